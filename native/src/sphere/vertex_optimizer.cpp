@@ -1,0 +1,155 @@
+#include "sphere/vertex_optimizer.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace cmaps {
+
+VertexOptimizer::VertexOptimizer(const MeshRefinement& mesh, const std::vector<FaceWeights>& weights,
+                                 std::vector<Vec3>& sphere, int threads)
+    : mesh_(mesh), weights_(weights), sphere_(sphere), threads_(std::max(1, threads)) {}
+
+double VertexOptimizer::star_energy(int v, const Vec3& p, Vec3* gradient) const {
+  if (gradient) gradient->setZero();
+  double energy = 0;
+  const auto& triangles = mesh_.triangles();
+  for (int f : mesh_.faces_of(v)) {
+    const Triangle& t = triangles[f];
+    const int k = t[0] == v ? 0 : t[1] == v ? 1 : 2;
+    const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+    const FaceWeights& w = weights_[f];
+    energy += corner_energy(p, sphere_[t[k1]], sphere_[t[k2]], {w[k], w[k1], w[k2]}, gradient);
+    if (!std::isfinite(energy)) return energy;
+  }
+  return energy;
+}
+
+double VertexOptimizer::total_energy() const {
+  double energy = 0;
+  const auto& triangles = mesh_.triangles();
+  for (size_t f = 0; f < triangles.size(); ++f)
+    if (mesh_.face_active(f)) {
+      const Triangle& t = triangles[f];
+      energy += corner_energy(sphere_[t[0]], sphere_[t[1]], sphere_[t[2]], weights_[f], nullptr);
+    }
+  return energy;
+}
+
+double VertexOptimizer::optimize_vertex(int v, int iterations) {
+  if (!fixed_.empty() && fixed_[v]) return 0;
+  const Vec3 start = sphere_[v];
+  Vec3 p = start;
+  // The smallest chord to a neighbour sets the scale of steps and differences.
+  double scale = std::numeric_limits<double>::infinity();
+  for (int f : mesh_.faces_of(v))
+    for (int w : mesh_.triangles()[f])
+      if (w != v) scale = std::min(scale, (sphere_[w] - p).norm());
+  if (!(scale > 0) || !std::isfinite(scale)) return 0;
+
+  for (int it = 0; it < iterations; ++it) {
+    const Vec3 t1 = p.unitOrthogonal(), t2 = p.cross(t1);
+    // Gradient of u -> E(normalize(p + u1 t1 + u2 t2)) at u.
+    auto tangent_gradient = [&](const Eigen::Vector2d& u, double* energy) -> Eigen::Vector2d {
+      const Vec3 raw = p + u.x() * t1 + u.y() * t2;
+      const double len = raw.norm();
+      const Vec3 q = raw / len;
+      Vec3 g;
+      *energy = star_energy(v, q, &g);
+      const Vec3 gt = (g - q * q.dot(g)) / len;
+      return {gt.dot(t1), gt.dot(t2)};
+    };
+    double e0;
+    const Eigen::Vector2d g = tangent_gradient({0, 0}, &e0);
+    if (!std::isfinite(e0) || g.norm() == 0) break;
+    const double h = 1e-4 * scale;
+    Eigen::Matrix2d hessian;
+    bool newton = true;
+    for (int i = 0; i < 2 && newton; ++i) {
+      double ei;
+      const Eigen::Vector2d gi = tangent_gradient(Eigen::Vector2d::Unit(i) * h, &ei);
+      newton = std::isfinite(ei);
+      hessian.col(i) = (gi - g) / h;
+    }
+    Eigen::Vector2d step;
+    if (newton) {
+      hessian = 0.5 * (hessian + hessian.transpose()).eval();
+      if (hessian.determinant() > 0 && hessian.trace() > 0)
+        step = -hessian.inverse() * g;
+      else
+        newton = false;
+    }
+    if (!newton) step = -g * (0.25 * scale / g.norm());
+    if (step.norm() > scale) step *= scale / step.norm();
+
+    const double slope = g.dot(step);
+    bool accepted = false;
+    for (double t = 1; t > 1e-4; t *= 0.5) {
+      const Vec3 q = (p + t * step.x() * t1 + t * step.y() * t2).normalized();
+      const double e = star_energy(v, q, nullptr);
+      if (e <= e0 + 1e-4 * t * slope) {
+        p = q;
+        accepted = true;
+        break;
+      }
+    }
+    if (!accepted || step.norm() < 1e-9 * scale) {
+      if (accepted) sphere_[v] = p;
+      break;
+    }
+    sphere_[v] = p;
+  }
+  sphere_[v] = p;
+  return (p - start).norm() / scale;
+}
+
+void VertexOptimizer::optimize_all(int max_sweeps, double tolerance) {
+  const int n = static_cast<int>(sphere_.size());
+  // Neighbour lists and a greedy colouring of the current mesh.
+  std::vector<std::vector<int>> neighbours(n);
+  const auto& triangles = mesh_.triangles();
+  for (size_t f = 0; f < triangles.size(); ++f)
+    if (mesh_.face_active(f)) {
+      const Triangle& t = triangles[f];
+      for (int k = 0; k < 3; ++k) neighbours[t[k]].push_back(t[(k + 1) % 3]);
+    }
+  std::vector<int> colour(n, -1);
+  std::vector<std::vector<int>> classes;
+  std::vector<char> taken;
+  for (int v = 0; v < n; ++v) {
+    if (!mesh_.vertex_active(v)) continue;
+    taken.assign(classes.size() + 1, 0);
+    for (int w : neighbours[v])
+      if (colour[w] >= 0) taken[colour[w]] = 1;
+    const int c = static_cast<int>(std::find(taken.begin(), taken.end(), 0) - taken.begin());
+    if (c == static_cast<int>(classes.size())) classes.emplace_back();
+    colour[v] = c;
+    classes[c].push_back(v);
+  }
+
+  std::vector<char> active(n, 0), next(n, 0);
+  for (int v = 0; v < n; ++v) active[v] = mesh_.vertex_active(v);
+  std::vector<double> moved(n, 0);
+  for (int sweep = 0; sweep < max_sweeps; ++sweep) {
+    for (const auto& members : classes) {
+#pragma omp parallel for schedule(dynamic, 64) num_threads(threads_)
+      for (size_t i = 0; i < members.size(); ++i) {
+        const int v = members[i];
+        moved[v] = active[v] ? optimize_vertex(v, 1) : 0;
+      }
+    }
+    bool any = false;
+    std::fill(next.begin(), next.end(), 0);
+    for (int v = 0; v < n; ++v)
+      if (active[v] && moved[v] > tolerance) {
+        any = true;
+        next[v] = 1;
+        for (int w : neighbours[v]) next[w] = 1;
+      }
+    if (!any) break;
+    active.swap(next);
+  }
+}
+
+}  // namespace cmaps
