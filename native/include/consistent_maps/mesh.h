@@ -3,6 +3,7 @@
 // "triangle indices refer to vertices" once validated.
 #pragma once
 #include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products everywhere
 #include <array>
 #include <vector>
 

@@ -1,5 +1,6 @@
 #include "consistent_maps/spherical_parameterization.h"
 
+#include <Eigen/Geometry>
 #include <chrono>
 #include <cmath>
 #include <random>
@@ -120,7 +121,6 @@ SphereResult spherical_parameterization(const TriangleMesh& mesh, const SphereOp
     optimizer.optimize_vertex(s.removed, schedule.split_iterations);
     for (int w : refinement.ring(s.removed)) optimizer.optimize_vertex(w, 1);
     optimizer.optimize_vertex(s.removed, 1);
-
     if (refinement.active_vertex_count() >= next_pass) {
       optimizer.optimize_all(schedule.pass_sweeps, schedule.tolerance);
       next_pass = refinement.active_vertex_count() * schedule.growth;

@@ -7,6 +7,11 @@
 // W_i = A_m * |opposite surface edge|^2 (summed over several geometries when
 // one connectivity carries many shapes). The sum over all triangles is
 // A_M * L2(M)^2, so with A_M = 4 pi the efficiency is 4 pi / energy.
+//
+// The optimizer uses |n| * det(p, a, b) in place of |n|^2: the same for the
+// small triangles of a fine mesh (det = |n| * the plane's distance from the
+// centre, nearly 1), but a barrier as a large coarse-level triangle grows
+// towards a hemisphere, where the chordal energy alone stays finite.
 #pragma once
 #include <array>
 #include <vector>

@@ -41,13 +41,22 @@ double VertexOptimizer::optimize_vertex(int v, int iterations) {
   if (!fixed_.empty() && fixed_[v]) return 0;
   const Vec3 start = sphere_[v];
   Vec3 p = start;
-  // The smallest chord to a neighbour sets the scale of steps and differences.
-  double scale = std::numeric_limits<double>::infinity();
-  for (int f : mesh_.faces_of(v))
-    for (int w : mesh_.triangles()[f])
-      if (w != v) scale = std::min(scale, (sphere_[w] - p).norm());
-  if (!(scale > 0) || !std::isfinite(scale)) return 0;
-
+  // The longest chord to a neighbour caps the step. The clearance, the
+  // distance to the nearest great circle bounding the kernel, sets the
+  // finite-difference step and how far the line search may shrink: any move
+  // shorter than it is valid.
+  double reach = 0, clearance = std::numeric_limits<double>::infinity();
+  const auto& triangles = mesh_.triangles();
+  for (int f : mesh_.faces_of(v)) {
+    const Triangle& t = triangles[f];
+    const int k = t[0] == v ? 0 : t[1] == v ? 1 : 2;
+    const Vec3 &a = sphere_[t[(k + 1) % 3]], &b = sphere_[t[(k + 2) % 3]];
+    reach = std::max(reach, (a - p).norm());
+    const Vec3 normal = a.cross(b);
+    clearance = std::min(clearance, p.dot(normal) / normal.norm());
+  }
+  if (!(clearance > 0) || !std::isfinite(reach)) return 0;
+  const double scale = std::min(reach, clearance);
   for (int it = 0; it < iterations; ++it) {
     const Vec3 t1 = p.unitOrthogonal(), t2 = p.cross(t1);
     // Gradient of u -> E(normalize(p + u1 t1 + u2 t2)) at u.
@@ -63,7 +72,7 @@ double VertexOptimizer::optimize_vertex(int v, int iterations) {
     double e0;
     const Eigen::Vector2d g = tangent_gradient({0, 0}, &e0);
     if (!std::isfinite(e0) || g.norm() == 0) break;
-    const double h = 1e-4 * scale;
+    const double h = 1e-3 * scale;
     Eigen::Matrix2d hessian;
     bool newton = true;
     for (int i = 0; i < 2 && newton; ++i) {
@@ -80,12 +89,12 @@ double VertexOptimizer::optimize_vertex(int v, int iterations) {
       else
         newton = false;
     }
-    if (!newton) step = -g * (0.25 * scale / g.norm());
-    if (step.norm() > scale) step *= scale / step.norm();
+    if (!newton) step = -g * (0.25 * reach / g.norm());
+    if (step.norm() > reach) step *= reach / step.norm();
 
     const double slope = g.dot(step);
     bool accepted = false;
-    for (double t = 1; t > 1e-4; t *= 0.5) {
+    for (double t = 1; t * step.norm() > 1e-3 * scale; t *= 0.5) {
       const Vec3 q = (p + t * step.x() * t1 + t * step.y() * t2).normalized();
       const double e = star_energy(v, q, nullptr);
       if (e <= e0 + 1e-4 * t * slope) {
