@@ -1,0 +1,65 @@
+// A flat JSON object written by hand: the CLI's --json output is one small
+// object, not worth a dependency.
+#pragma once
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <string>
+
+namespace cmaps {
+
+class JsonObject {
+ public:
+  JsonObject& add(const std::string& key, const std::string& value) { return raw(key, quote(value)); }
+  JsonObject& add(const std::string& key, const char* value) { return add(key, std::string(value)); }
+  JsonObject& add(const std::string& key, bool value) { return raw(key, value ? "true" : "false"); }
+  JsonObject& add(const std::string& key, int value) { return raw(key, std::to_string(value)); }
+  JsonObject& add(const std::string& key, unsigned long long value) { return raw(key, std::to_string(value)); }
+  // JSON has no NaN or infinity; they become null.
+  JsonObject& add(const std::string& key, double value) {
+    if (!std::isfinite(value)) return null(key);
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", value);
+    return raw(key, text);
+  }
+  template <class T>
+  JsonObject& add(const std::string& key, const std::optional<T>& value) {
+    return value ? add(key, *value) : null(key);
+  }
+  JsonObject& null(const std::string& key) { return raw(key, "null"); }
+
+  std::string str() const { return "{" + body_ + "}"; }
+
+  static std::string quote(const std::string& s) {
+    std::string out = "\"";
+    for (unsigned char c : s) {
+      switch (c) {
+        case '"': out += "\\\""; break;
+        case '\\': out += "\\\\"; break;
+        case '\n': out += "\\n"; break;
+        case '\r': out += "\\r"; break;
+        case '\t': out += "\\t"; break;
+        default:
+          if (c < 0x20) {
+            char escaped[8];
+            std::snprintf(escaped, sizeof escaped, "\\u%04x", c);
+            out += escaped;
+          } else {
+            out += char(c);  // UTF-8 passes through unchanged
+          }
+      }
+    }
+    return out + "\"";
+  }
+
+ private:
+  JsonObject& raw(const std::string& key, const std::string& value) {
+    if (!body_.empty()) body_ += ", ";
+    body_ += quote(key) + ": " + value;
+    return *this;
+  }
+
+  std::string body_;
+};
+
+}  // namespace cmaps

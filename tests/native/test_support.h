@@ -1,0 +1,49 @@
+// Shared helpers for the native tests: paths to the shared meshes, scratch
+// files, and tiny meshes built in code.
+#pragma once
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <string>
+
+#include "consistent_maps/mesh.h"
+
+namespace cmaps::test {
+
+inline std::string shared_mesh(const std::string& relative) {
+  return std::string(CMAPS_SHARED_MESHES) + "/" + relative;
+}
+
+// A scratch file path unique to the running test, removed by the caller's OS temp cleanup.
+inline std::string scratch_path(const std::string& suffix) {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string name = std::string("cmaps_") + info->test_suite_name() + "_" + info->name();
+  std::replace(name.begin(), name.end(), '/', '_');  // parameterized tests have '/' in their names
+  return ::testing::TempDir() + name + suffix;
+}
+
+inline std::string write_text(const std::string& suffix, const std::string& text) {
+  const std::string path = scratch_path(suffix);
+  std::ofstream(path, std::ios::binary) << text;
+  return path;
+}
+
+// Regular tetrahedron, outward (counter-clockwise) orientation.
+inline TriangleMesh tetrahedron() {
+  TriangleMesh m;
+  m.vertices = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+  m.triangles = {{{0, 1, 2}}, {{0, 3, 1}}, {{0, 2, 3}}, {{1, 3, 2}}};
+  return m;
+}
+
+// Octahedron, outward orientation: 6 vertices, 8 triangles.
+inline TriangleMesh octahedron() {
+  TriangleMesh m;
+  m.vertices = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  m.triangles = {{{0, 2, 4}}, {{2, 1, 4}}, {{1, 3, 4}}, {{3, 0, 4}},
+                 {{2, 0, 5}}, {{1, 2, 5}}, {{3, 1, 5}}, {{0, 3, 5}}};
+  return m;
+}
+
+}  // namespace cmaps::test
