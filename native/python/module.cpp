@@ -44,10 +44,11 @@ py::array as_array(const py::handle& data, const char* name) {
 }
 
 void require_n_by_3(const py::array& array, const char* name) {
-  if (array.ndim() != 2 || array.shape(1) != 3)
-    raise(PyExc_ValueError, std::string(name) + " must have shape (n, 3), got " +
-                                std::string(py::str(py::tuple(py::cast(std::vector<py::ssize_t>(
-                                    array.shape(), array.shape() + array.ndim()))))));
+  if (array.ndim() == 2 && array.shape(1) == 3) return;
+  std::string shape;
+  for (py::ssize_t d = 0; d < array.ndim(); ++d) shape += (d ? ", " : "") + std::to_string(array.shape(d));
+  if (array.ndim() == 1) shape += ",";
+  raise(PyExc_ValueError, std::string(name) + " must have shape (n, 3), got (" + shape + ")");
 }
 
 std::vector<cmaps::Vec3> to_points(const py::handle& data, const char* name) {
