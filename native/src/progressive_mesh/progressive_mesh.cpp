@@ -130,7 +130,7 @@ class Simplifier {
 
   // Link condition: the only common neighbours of u and v are the apexes of
   // the two triangles on edge uv, which keeps the mesh a manifold.
-  bool link_ok(int u, int v, const std::vector<int>& nu) const {
+  bool link_ok(int v, const std::vector<int>& nu) const {
     const std::vector<int> nv = neighbours(v);
     int common = 0;
     for (int w : nu)
@@ -165,7 +165,7 @@ class Simplifier {
       if (path_allows(u, v)) options.emplace_back(cost(u, v), v);
     std::sort(options.begin(), options.end());
     for (const auto& [c, v] : options) {
-      if (!link_ok(u, v, nu) || (strict_ && !geometry_ok(u, v))) continue;
+      if (!link_ok(v, nu) || (strict_ && !geometry_ok(u, v))) continue;
       heap_.push({c, u, v, stamp_[u]});
       return;
     }

@@ -142,7 +142,8 @@ void VertexOptimizer::optimize_all(int max_sweeps, double tolerance) {
   std::vector<double> moved(n, 0);
   for (int sweep = 0; sweep < max_sweeps; ++sweep) {
     for (const auto& members : classes) {
-#pragma omp parallel for schedule(dynamic, 64) num_threads(threads_)
+      // Small classes are not worth waking the other threads for.
+#pragma omp parallel for schedule(dynamic, 64) num_threads(threads_) if (members.size() > 2048)
       for (size_t i = 0; i < members.size(); ++i) {
         const int v = members[i];
         moved[v] = active[v] ? optimize_vertex(v, 1) : 0;
