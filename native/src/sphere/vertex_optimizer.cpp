@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "common/parallel_for.h"
+
 namespace cmaps {
 
 VertexOptimizer::VertexOptimizer(const MeshRefinement& mesh, const std::vector<FaceWeights>& weights,
@@ -142,12 +144,11 @@ void VertexOptimizer::optimize_all(int max_sweeps, double tolerance) {
   std::vector<double> moved(n, 0);
   for (int sweep = 0; sweep < max_sweeps; ++sweep) {
     for (const auto& members : classes) {
-      // Small classes are not worth waking the other threads for.
-#pragma omp parallel for schedule(dynamic, 64) num_threads(threads_) if (members.size() > 2048)
-      for (size_t i = 0; i < members.size(); ++i) {
+      // Small classes are not worth a second thread.
+      parallel_for(members.size(), members.size() > 2048 ? threads_ : 1, [&](size_t i) {
         const int v = members[i];
         moved[v] = active[v] ? optimize_vertex(v, 1) : 0;
-      }
+      });
     }
     bool any = false;
     std::fill(next.begin(), next.end(), 0);
