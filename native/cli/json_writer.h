@@ -1,6 +1,7 @@
 // A flat JSON object written by hand: the CLI's --json output is one small
 // object, not worth a dependency.
 #pragma once
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -19,8 +20,8 @@ class JsonObject {
   JsonObject& add(const std::string& key, double value) {
     if (!std::isfinite(value)) return null(key);
     char text[32];
-    std::snprintf(text, sizeof text, "%.17g", value);
-    return raw(key, text);
+    const auto end = std::to_chars(text, text + sizeof text, value).ptr;  // shortest exact form
+    return raw(key, std::string(text, end));
   }
   template <class T>
   JsonObject& add(const std::string& key, const std::optional<T>& value) {
