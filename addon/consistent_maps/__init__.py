@@ -1,9 +1,8 @@
-"""Consistent Maps: stretch-minimizing spherical parameterization of meshes, for Blender.
+"""Consistent Maps: put meshes into correspondence through spherical parameterizations, in Blender.
 
-The package imports in plain Python as well (bpy is only imported inside
-register/unregister), so the native core can be used and tested outside Blender:
-
-    from consistent_maps import _native
+The package imports in plain Python too: bpy is only imported by register() and
+unregister() (through `registration`), so the native core and the pure-Python
+parts can be used and tested outside Blender. Scripts use `consistent_maps.api`.
 """
 
 bl_info = {
@@ -12,14 +11,16 @@ bl_info = {
     "version": (0, 1, 0),
     "blender": (3, 4, 0),
     "location": "View3D > Sidebar > Consistent Maps",
-    "description": "Bijective, stretch-minimizing maps of closed genus-0 meshes onto the sphere",
+    "description": "Feature points, spherical parameterizations and correspondence between meshes",
     "category": "Mesh",
 }
 
 
 def register():
-    import bpy  # noqa: F401  (Blender only; the UI is registered here as it grows)
+    from . import registration
+    registration.register()
 
 
 def unregister():
-    import bpy  # noqa: F401
+    from . import registration
+    registration.unregister()

@@ -1,0 +1,65 @@
+"""A computation running in a worker thread, polled from the main thread.
+
+The native library releases the GIL while it works, so Blender's interface
+keeps running; the worker only touches the copied-out arrays. Cancellation is
+a flag the progress callback reports back to the library. One job at a time.
+"""
+import threading
+
+from . import api
+
+_current = None
+
+
+class Job:
+    def __init__(self, tasks, options):
+        self.tasks = tasks
+        self.fraction = 0.0
+        self.stage = "starting"
+        self.outputs = None
+        self.error = None
+        self.cancelled = False
+        self._cancel_requested = False
+        self._thread = threading.Thread(target=self._work, args=(options,), name="consistent_maps", daemon=True)
+
+    def _progress(self, fraction, stage):
+        self.fraction, self.stage = fraction, stage
+        return not self._cancel_requested
+
+    def _work(self, options):
+        try:
+            self.outputs = api.run(self.tasks, progress=self._progress, **options)
+        except api.Cancelled:
+            self.cancelled = True
+        except Exception as e:  # reported to the user by the operator, on the main thread
+            self.error = e
+
+    def start(self):
+        self._thread.start()
+
+    def cancel(self):
+        self._cancel_requested = True
+
+    @property
+    def done(self):
+        return not self._thread.is_alive()
+
+
+def start(tasks, options):
+    global _current
+    if _current is not None:
+        raise RuntimeError("a computation is already running")
+    _current = Job(tasks, options)
+    _current.start()
+    return _current
+
+
+def current():
+    """The job started and not yet finished, or None."""
+    return _current
+
+
+def finish():
+    """Forgets the current job (after its results were applied or dropped)."""
+    global _current
+    _current = None

@@ -1,0 +1,178 @@
+"""Sidebar UI (View3D > Sidebar > Consistent Maps): the set, its features, Compute and results."""
+import bpy
+
+from . import features, job, results, status
+from .properties import set_objects
+
+CATEGORY = "Consistent Maps"
+RESULT_ICONS = {"NONE": 'BLANK1', "CURRENT": 'CHECKMARK', "STALE": 'ERROR'}
+RESULT_TEXT = {"NONE": "not computed", "CURRENT": "up to date", "STALE": "stale: the mesh changed"}
+MAX_PROBLEM_LINES = 6
+
+
+class CM_UL_members(bpy.types.UIList):
+    def draw_item(self, context, layout, data, item, icon, active_data, active_property, index=0, flt_flag=0):
+        obj = item.object
+        if obj is None:
+            layout.label(text="(deleted object)", icon='ERROR')
+            return
+        result = status.of(obj).result
+        layout.label(text=obj.name, icon='MESH_DATA')
+        layout.label(text="", icon=RESULT_ICONS[result])
+
+
+class CM_UL_features(bpy.types.UIList):
+    """The CM: vertex groups of an object, shown by feature name with their state."""
+
+    def draw_item(self, context, layout, data, item, icon, active_data, active_property, index=0, flt_flag=0):
+        verts = features.memberships(data).get(features.feature_name(item.name), [])
+        row = layout.row()
+        row.label(text=features.feature_name(item.name), icon='DOT')
+        if len(verts) == 1:
+            row.label(text=f"vertex {verts[0]}")
+        else:
+            row.label(text="not placed" if not verts else f"{len(verts)} vertices!", icon='ERROR')
+
+    def filter_items(self, context, data, propname):
+        groups = getattr(data, propname)
+        flags = [self.bitflag_filter_item if features.is_feature_group(g.name) else 0 for g in groups]
+        return flags, []
+
+
+class _Panel:
+    bl_space_type = 'VIEW_3D'
+    bl_region_type = 'UI'
+    bl_category = CATEGORY
+
+
+class CM_PT_main(_Panel, bpy.types.Panel):
+    bl_label = "Consistent Maps"
+
+    def draw(self, context):
+        settings = context.scene.consistent_maps
+        row = self.layout.row()
+        row.template_list("CM_UL_members", "", settings, "members", settings, "active_member", rows=3)
+        column = row.column(align=True)
+        column.operator("consistent_maps.add_selected", text="", icon='ADD')
+        column.operator("consistent_maps.remove_member", text="", icon='REMOVE')
+        column.separator()
+        column.operator("consistent_maps.move_member", text="", icon='TRIA_UP').direction = 'UP'
+        column.operator("consistent_maps.move_member", text="", icon='TRIA_DOWN').direction = 'DOWN'
+        if 0 <= settings.active_member < len(settings.members) and settings.members[settings.active_member].object:
+            _draw_status(self.layout.box(), settings.members[settings.active_member].object)
+        _draw_problems(self.layout, set_objects(context.scene))
+
+
+def _draw_status(layout, obj):
+    s = status.of(obj)
+    column = layout.column(align=True)
+    column.label(text=f"{obj.name}: {s.triangles} triangles, genus {s.genus}, "
+                      f"{'manifold' if s.manifold else 'NOT manifold'}")
+    column.label(text=f"Features: {len(s.placed)} placed"
+                      + (f", {len(s.unplaced)} to place" if s.unplaced else "")
+                      + (f", {len(s.ambiguous)} invalid" if s.ambiguous else ""))
+    column.label(text=f"Result: {RESULT_TEXT[s.result]}", icon=RESULT_ICONS[s.result])
+
+
+def _draw_problems(layout, objects):
+    errors = [(obj.name, status.of(obj).sphere_error) for obj in objects]
+    lines = [f"'{name}': {error}" for name, error in errors if error]
+    lines += features.problems(objects)
+    if not lines:
+        return
+    box = layout.box()
+    for line in lines[:MAX_PROBLEM_LINES]:
+        box.label(text=line, icon='ERROR')
+    if len(lines) > MAX_PROBLEM_LINES:
+        box.label(text=f"... and {len(lines) - MAX_PROBLEM_LINES} more")
+
+
+class CM_PT_features(_Panel, bpy.types.Panel):
+    bl_label = "Features"
+    bl_parent_id = "CM_PT_main"
+
+    def draw_header(self, context):
+        self.layout.prop(context.scene.consistent_maps, "show_features", text="")
+
+    def draw(self, context):
+        layout = self.layout
+        obj = context.active_object
+        if obj is None or obj.type != 'MESH':
+            layout.label(text="Select a mesh object to see its features")
+            return
+        layout.label(text=f"Features of '{obj.name}'")
+        row = layout.row()
+        row.template_list("CM_UL_features", "", obj, "vertex_groups", obj.vertex_groups, "active_index", rows=3)
+        column = row.column(align=True)
+        column.operator("consistent_maps.add_feature", text="", icon='ADD')
+        column.operator("consistent_maps.delete_feature", text="", icon='REMOVE')
+        column.separator()
+        column.operator("consistent_maps.select_feature", text="", icon='RESTRICT_SELECT_OFF')
+        column.operator("consistent_maps.rename_feature", text="", icon='GREASEPENCIL')
+        layout.operator("consistent_maps.copy_feature_names", icon='COPYDOWN')
+        if obj.mode != 'EDIT':
+            layout.label(text="Add features in Edit Mode: select one vertex, press +", icon='INFO')
+        _draw_missing(layout, obj, set_objects(context.scene))
+
+
+def _draw_missing(layout, obj, objects):
+    """Names other objects of the set have and obj lacks or has not placed, with a Place button."""
+    names = []
+    for other in objects:
+        names += [n for n in features.features(other) if n not in names]
+    placed = features.features(obj)
+    missing = [n for n in names if n not in placed]
+    if not missing:
+        return
+    box = layout.box()
+    box.label(text="To place on this object:")
+    for name in missing:
+        row = box.row()
+        row.label(text=name, icon='ERROR')
+        if obj.mode == 'EDIT':
+            row.operator("consistent_maps.add_feature", text="Place at Selected").name = name
+
+
+class CM_PT_compute(_Panel, bpy.types.Panel):
+    bl_label = "Compute"
+    bl_parent_id = "CM_PT_main"
+
+    def draw(self, context):
+        layout = self.layout
+        settings = context.scene.consistent_maps
+        running = job.current()
+        if running is None:
+            layout.prop(settings, "effort")
+            layout.operator("consistent_maps.compute", icon='PLAY')
+        else:
+            row = layout.row()
+            row.enabled = False
+            row.prop(context.window_manager, "consistent_maps_progress", slider=True)
+            layout.label(text=running.stage)
+            layout.operator("consistent_maps.cancel", icon='CANCEL')
+        layout.label(text="Maps are unconstrained for now: features are not yet aligned", icon='INFO')
+
+
+class CM_PT_results(_Panel, bpy.types.Panel):
+    bl_label = "Results"
+    bl_parent_id = "CM_PT_main"
+
+    def draw(self, context):
+        layout = self.layout
+        objects = set_objects(context.scene)
+        column = layout.column(align=True)
+        for obj in objects:
+            s = status.of(obj)
+            stats = results.stats(obj.data)
+            if s.result == results.NONE or not stats:
+                column.label(text=f"{obj.name}: not computed", icon='BLANK1')
+                continue
+            column.label(text=f"{obj.name}: efficiency {stats['efficiency']:.3f}, {stats['seconds']:.1f} s"
+                              + ("" if stats.get("bijective") else ", NOT bijective"),
+                         icon=RESULT_ICONS[s.result])
+        row = layout.row(align=True)
+        row.operator("consistent_maps.sphere_preview", text="Show Sphere", icon='SPHERE').show = True
+        row.operator("consistent_maps.sphere_preview", text="Hide Sphere", icon='MESH_DATA').show = False
+
+
+CLASSES = (CM_UL_members, CM_UL_features, CM_PT_main, CM_PT_features, CM_PT_compute, CM_PT_results)

@@ -1,0 +1,56 @@
+"""Data the add-on keeps in the .blend: the set of objects and the compute options.
+
+`bpy.types.Scene.consistent_maps` holds them; the progress of a running
+computation lives on the window manager (shown in the panel, not worth saving).
+"""
+import bpy
+from bpy.props import BoolProperty, CollectionProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty
+
+EFFORT_ITEMS = [
+    ('0', "Fast", "Quickest map, more stretch"),
+    ('1', "Balanced", "Good map in reasonable time"),
+    ('2', "Best", "Least stretch, slowest"),
+]
+
+
+def _is_mesh(_self, obj):
+    return obj.type == 'MESH'
+
+
+def _redraw_views(_self, context):
+    for area in context.screen.areas if context.screen else ():
+        if area.type == 'VIEW_3D':
+            area.tag_redraw()
+
+
+class CM_Member(bpy.types.PropertyGroup):
+    object: PointerProperty(type=bpy.types.Object, poll=_is_mesh, name="Object")
+
+
+class CM_Settings(bpy.types.PropertyGroup):
+    members: CollectionProperty(type=CM_Member)
+    active_member: IntProperty(name="Active Member")
+    effort: EnumProperty(name="Effort", items=EFFORT_ITEMS, default='1',
+                         description="How hard the optimizer works on reducing stretch")
+    show_features: BoolProperty(name="Show Features", default=True, update=_redraw_views,
+                                description="Draw the features of the set in the viewport, with their names")
+
+
+
+def set_objects(scene):
+    """The objects of the set, in order (members whose object was deleted are skipped)."""
+    return [m.object for m in scene.consistent_maps.members if m.object is not None]
+
+
+CLASSES = (CM_Member, CM_Settings)
+
+
+def attach():
+    bpy.types.Scene.consistent_maps = PointerProperty(type=CM_Settings)
+    bpy.types.WindowManager.consistent_maps_progress = FloatProperty(
+        name="Progress", subtype='PERCENTAGE', min=0, max=100, precision=0)
+
+
+def detach():
+    del bpy.types.WindowManager.consistent_maps_progress
+    del bpy.types.Scene.consistent_maps
