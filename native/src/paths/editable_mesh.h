@@ -1,0 +1,54 @@
+// A closed triangle mesh that can grow by edge splits (Steiner vertices),
+// with the adjacency that path tracing needs: vertex -> triangles and an
+// edge index with each edge's two triangles. Every vertex remembers where it
+// lies on the input surface as a combination of at most three input vertices.
+#pragma once
+#include <array>
+#include <unordered_map>
+#include <vector>
+
+#include "consistent_maps/mesh.h"
+
+namespace cmaps {
+
+struct SurfacePoint {
+  std::array<int, 3> vertices{-1, -1, -1};  // input vertices (-1 = unused slot)
+  std::array<double, 3> weights{0, 0, 0};   // barycentric weights, summing to 1
+};
+
+class EditableMesh {
+ public:
+  // Throws TopologyError unless every edge has exactly two triangles.
+  explicit EditableMesh(const TriangleMesh& mesh);
+
+  int vertex_count() const { return static_cast<int>(positions_.size()); }
+  int input_vertex_count() const { return input_vertices_; }
+  int edge_count() const { return static_cast<int>(edge_vertices_.size()); }
+  const Vec3& position(int v) const { return positions_[v]; }
+  const std::vector<Vec3>& positions() const { return positions_; }
+  const std::vector<Triangle>& triangles() const { return triangles_; }
+  const std::vector<int>& faces_of(int v) const { return vertex_faces_[v]; }
+  const std::array<int, 2>& edge_vertices(int e) const { return edge_vertices_[e]; }
+  const std::array<int, 2>& edge_faces(int e) const { return edge_faces_[e]; }
+  int edge(int a, int b) const;  // -1 when a and b are not adjacent
+  std::vector<int> ring(int v) const;  // neighbours, counter-clockwise
+  const SurfacePoint& surface_point(int v) const { return origins_[v]; }
+
+  // Inserts a vertex at the midpoint of edge e, splitting its two triangles.
+  int split_edge(int e);
+
+ private:
+  static std::uint64_t key(int a, int b);
+  void set_edge(int a, int b, int f0, int f1);
+  void replace_edge_face(int a, int b, int old_face, int new_face);
+
+  int input_vertices_;
+  std::vector<Vec3> positions_;
+  std::vector<SurfacePoint> origins_;
+  std::vector<Triangle> triangles_;
+  std::vector<std::vector<int>> vertex_faces_;
+  std::unordered_map<std::uint64_t, int> edge_index_;
+  std::vector<std::array<int, 2>> edge_vertices_, edge_faces_;
+};
+
+}  // namespace cmaps
