@@ -5,11 +5,12 @@
 #include <limits>
 #include <map>
 #include <numeric>
-#include <queue>
 #include <unordered_map>
 #include <unordered_set>
 
 #include "consistent_maps/errors.h"
+#include "paths/layout_flips.h"
+#include "paths/mesh_search.h"
 
 namespace cmaps {
 namespace {
@@ -18,23 +19,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kSteinerPenalty = 1.0;  // a step through an edge midpoint costs 1 + this times its length
 constexpr double kPenalty = 1e9;         // ranks a candidate behind every unpenalized one
 const double kThinAngle = 10 * M_PI / 180;
-
-// The ring positions a new path may leave a feature through: ring vertex k
-// sits at k, the midpoint of ring edge (k, k+1) at k + 0.5; allowed are the
-// positions strictly inside (lo, lo + span) counter-clockwise.
-struct Sector {
-  std::unordered_map<int, double> position;  // search node -> ring position
-  double lo = 0, span = 0, size = 0;
-  bool everything = true;
-
-  bool allows(int node) const {
-    const auto it = position.find(node);
-    if (it == position.end()) return false;
-    if (everything) return true;
-    const double rel = std::fmod(it->second - lo + size, size);
-    return rel > 0 && rel < span;
-  }
-};
 
 // Counter-clockwise neighbours of v in a triangle list.
 std::vector<int> ring_in(const std::vector<Triangle>& triangles, int v) {
@@ -172,20 +156,6 @@ class Tracer {
       }
   }
 
-  Vec3 node_position(int node, int vertices) const {
-    if (node < vertices) return mesh_.position(node);
-    const auto& e = mesh_.edge_vertices(node - vertices);
-    return 0.5 * (mesh_.position(e[0]) + mesh_.position(e[1]));
-  }
-
-  double path_length(const std::vector<int>& nodes) const {
-    if (nodes.empty()) return kInf;
-    double length = 0;
-    for (size_t i = 1; i < nodes.size(); ++i)
-      length += (node_position(nodes[i], search_vertices_) - node_position(nodes[i - 1], search_vertices_)).norm();
-    return length;
-  }
-
   // The sector of feature f through which the path of arc a must leave.
   Sector sector(int f, int a, int vertices, bool midpoints) const {
     Sector s;
@@ -222,77 +192,22 @@ class Tracer {
   std::vector<int> trace(int a, bool restricted, bool midpoints) {
     const int vertices = mesh_.vertex_count();
     search_vertices_ = vertices;
-    const int nodes = vertices + (midpoints ? mesh_.edge_count() : 0);
-    const int source = features_[network_.arcs[a][0]], target = features_[network_.arcs[a][1]];
+    SearchRules rules;
+    rules.blocked = &blocked_;
+    rules.closed_edges = &path_edges_;
+    rules.midpoints = midpoints;
+    rules.midpoint_penalty = kSteinerPenalty;
     Sector from, to;
     if (restricted) {
       from = sector(network_.arcs[a][0], a, vertices, midpoints);
       to = sector(network_.arcs[a][1], a, vertices, midpoints);
+      rules.leave = &from;
+      rules.enter = &to;
     }
-    std::vector<double> cost(nodes, kInf);
-    std::vector<int> parent(nodes, -1);
-    std::vector<char> closed(nodes, 0);
-    const Vec3 goal = mesh_.position(target);
-    using Entry = std::pair<double, int>;
-    std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> open;
-    cost[source] = 0;
-    open.push({(mesh_.position(source) - goal).norm(), source});
-
-    auto relax = [&](int u, int w) {
-      if (w == source || closed[w]) return;
-      if (w == target) {
-        if (restricted && !to.allows(u)) return;
-      } else if (w < vertices) {
-        if (blocked_[w]) return;
-      } else if (path_edges_.count(w - vertices)) {
-        return;
-      }
-      if (u == source && restricted && !from.allows(w)) return;
-      const Vec3 pw = node_position(w, vertices);
-      double step = (pw - node_position(u, vertices)).norm();
-      if (u >= vertices || w >= vertices) step *= 1 + kSteinerPenalty;
-      if (cost[u] + step < cost[w]) {
-        cost[w] = cost[u] + step;
-        parent[w] = u;
-        open.push({cost[w] + (pw - goal).norm(), w});
-      }
-    };
-
-    while (!open.empty()) {
-      const int u = open.top().second;
-      open.pop();
-      if (closed[u]) continue;
-      closed[u] = 1;
-      if (u == target) break;
-      if (u < vertices) {
-        for (int f : mesh_.faces_of(u)) {
-          const Triangle& t = mesh_.triangles()[f];
-          const int k = t[0] == u ? 0 : t[1] == u ? 1 : 2;
-          const int b = t[(k + 1) % 3], c = t[(k + 2) % 3];
-          relax(u, b);
-          relax(u, c);
-          if (midpoints) relax(u, vertices + mesh_.edge(b, c));
-        }
-      } else {
-        const int e = u - vertices;
-        const auto [x, y] = mesh_.edge_vertices(e);
-        for (int f : mesh_.edge_faces(e)) {
-          const Triangle& t = mesh_.triangles()[f];
-          const int c = t[0] != x && t[0] != y ? t[0] : t[1] != x && t[1] != y ? t[1] : t[2];
-          relax(u, c);
-          if (midpoints) {
-            relax(u, vertices + mesh_.edge(x, c));
-            relax(u, vertices + mesh_.edge(y, c));
-          }
-        }
-      }
-    }
-    if (!closed[target]) return {};
-    std::vector<int> path;
-    for (int n = target; n >= 0; n = parent[n]) path.push_back(n);
-    std::reverse(path.begin(), path.end());
-    return path;
+    return shortest_path(mesh_, features_[network_.arcs[a][0]], features_[network_.arcs[a][1]], rules);
   }
+
+  double path_length(const std::vector<int>& nodes) const { return cmaps::path_length(mesh_, nodes, search_vertices_); }
 
   // Turns a traced node sequence into mesh vertices (splitting the edges of
   // midpoint nodes) and blocks it for later paths.
@@ -342,7 +257,11 @@ class Tracer {
 
 PathNetwork trace_path_network(EditableMesh& mesh, const std::vector<int>& features, const std::vector<Vec3>& targets,
                                const std::vector<Triangle>& sphere_triangles, const ProgressSlice& progress) {
-  return Tracer(mesh, features, targets, sphere_triangles).run(progress);
+  std::vector<Triangle> layout = sphere_triangles;
+  const int flips = flip_layout_to_shorter_paths(mesh, features, targets, layout);
+  PathNetwork network = Tracer(mesh, features, targets, layout).run(progress);
+  network.flips = flips;
+  return network;
 }
 
 }  // namespace cmaps

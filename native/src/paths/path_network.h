@@ -25,10 +25,12 @@ struct PathNetwork {
   std::vector<std::vector<int>> paths;     // per arc: mesh vertices from arcs[i][0]'s feature to arcs[i][1]'s
   int steiner_vertices = 0;
   int retraced = 0;  // candidates re-traced because the network had changed
+  int flips = 0;     // layout arcs flipped to shorter surface paths before tracing
 };
 
 // `features[i]` is the mesh vertex of feature i, `targets[i]` its unit vector;
-// `sphere_triangles` triangulate the targets (counter-clockwise from outside).
+// `sphere_triangles` triangulate the targets (counter-clockwise from outside);
+// arcs are first flipped where the other diagonal has a shorter surface path.
 // The mesh must be oriented outwards (positive signed volume). Grows `mesh`
 // by the Steiner vertices it needs.
 PathNetwork trace_path_network(EditableMesh& mesh, const std::vector<int>& features, const std::vector<Vec3>& targets,

@@ -114,6 +114,7 @@ ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mes
   const PathNetwork network =
       trace_path_network(editable, base_vertices, points, *hull, ProgressSlice(progress, "paths", begin, begin + 0.1));
   result.retraced_paths = network.retraced;
+  result.layout_flips = network.flips;
   result.seconds_paths = seconds_since(paths_start);
 
   // Simplify down to the features, collapsing path vertices along their paths.

@@ -25,10 +25,35 @@ constexpr Schedule kSchedules[] = {
     {1.25, 6, 100, 0.002, 3},
 };
 
-std::vector<Vec3> ring_positions(const MeshRefinement& mesh, const std::vector<Vec3>& sphere, int v) {
-  std::vector<Vec3> ring;
-  for (int w : mesh.ring(v)) ring.push_back(sphere[w]);
-  return ring;
+bool star_valid(const MeshRefinement& mesh, const std::vector<Vec3>& sphere, int v) {
+  const std::vector<int> ring = mesh.ring(v);
+  for (size_t i = 0; i < ring.size(); ++i)
+    if (!chordal_triangle_valid(sphere[v], sphere[ring[i]], sphere[ring[(i + 1) % ring.size()]])) return false;
+  return true;
+}
+
+// Puts the split's new vertex strictly inside its kernel. The kernel always
+// contains points close to the kept vertex inside the triangles the new
+// vertex takes over; when rounding defeats the polygon clipping (kernels of
+// width near machine precision), walk towards the kept vertex inside those.
+void place_split_vertex(const MeshRefinement& mesh, const VertexSplit& s, std::vector<Vec3>& sphere) {
+  const std::vector<int> ring = mesh.ring(s.removed);
+  std::vector<Vec3> ring_points;
+  for (int w : ring) ring_points.push_back(sphere[w]);
+  if (const auto p = kernel_point(ring_points, sphere[s.kept])) {
+    sphere[s.removed] = *p;
+    if (star_valid(mesh, sphere, s.removed)) return;
+  }
+  const Vec3 kept = sphere[s.kept];
+  for (double t = 0.5; t > 1e-14; t *= 0.25)
+    for (size_t i = 0; i < ring.size(); ++i) {
+      const Vec3& a = ring_points[i];
+      const Vec3& b = ring_points[(i + 1) % ring.size()];
+      if (ring[i] == s.kept || ring[(i + 1) % ring.size()] == s.kept) continue;
+      sphere[s.removed] = (kept + t * ((a + b + kept) / 3 - kept)).normalized();
+      if (star_valid(mesh, sphere, s.removed)) return;
+    }
+  throw Error("internal error: empty kernel at vertex split " + std::to_string(s.removed));
 }
 
 }  // namespace
@@ -71,9 +96,7 @@ void refine_on_sphere(const ProgressiveMesh& pm, const std::vector<const std::ve
     update_weights(s.face_left);
     update_weights(s.face_right);
 
-    const auto start = kernel_point(ring_positions(refinement, sphere, s.removed), sphere[s.kept]);
-    if (!start) throw Error("internal error: empty kernel at vertex split " + std::to_string(s.removed));
-    sphere[s.removed] = *start;
+    place_split_vertex(refinement, s, sphere);
     optimizer.optimize_vertex(s.removed, schedule.split_iterations);
     for (int w : refinement.ring(s.removed)) optimizer.optimize_vertex(w, 1);
     optimizer.optimize_vertex(s.removed, 1);

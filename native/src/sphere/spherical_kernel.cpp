@@ -42,7 +42,7 @@ std::optional<Vec3> kernel_point(const std::vector<Vec3>& ring, const Vec3& cent
     area += cross;
     centroid += (p + q) * cross;
   }
-  if (!(area > 1e-30)) return std::nullopt;
+  if (!(area > 0)) return std::nullopt;
   centroid /= 3 * area;
   return (center + centroid.x() * e1 + centroid.y() * e2).normalized();
 }

@@ -1,0 +1,102 @@
+#include "paths/mesh_search.h"
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <queue>
+
+namespace cmaps {
+
+bool Sector::allows(int node) const {
+  const auto it = position.find(node);
+  if (it == position.end()) return false;
+  if (everything) return true;
+  const double rel = std::fmod(it->second - lo + size, size);
+  return rel > 0 && rel < span;
+}
+
+Vec3 node_position(const EditableMesh& mesh, int node, int vertices) {
+  if (node < vertices) return mesh.position(node);
+  const auto& e = mesh.edge_vertices(node - vertices);
+  return 0.5 * (mesh.position(e[0]) + mesh.position(e[1]));
+}
+
+double path_length(const EditableMesh& mesh, const std::vector<int>& nodes, int vertices) {
+  if (nodes.empty()) return std::numeric_limits<double>::infinity();
+  double length = 0;
+  for (size_t i = 1; i < nodes.size(); ++i)
+    length += (node_position(mesh, nodes[i], vertices) - node_position(mesh, nodes[i - 1], vertices)).norm();
+  return length;
+}
+
+std::vector<int> shortest_path(const EditableMesh& mesh, int source, int target, const SearchRules& rules) {
+  const int vertices = mesh.vertex_count();
+  const int nodes = vertices + (rules.midpoints ? mesh.edge_count() : 0);
+  std::vector<double> cost(nodes, std::numeric_limits<double>::infinity());
+  std::vector<int> parent(nodes, -1);
+  std::vector<char> closed(nodes, 0);
+  const Vec3 goal = mesh.position(target);
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> open;
+  cost[source] = 0;
+  open.push({(mesh.position(source) - goal).norm(), source});
+
+  auto relax = [&](int u, int w) {
+    if (w == source || closed[w]) return;
+    if (w == target) {
+      if (rules.enter && !rules.enter->allows(u)) return;
+    } else if (w < vertices) {
+      if (rules.blocked && (*rules.blocked)[w]) return;
+    } else if (rules.closed_edges && rules.closed_edges->count(w - vertices)) {
+      return;
+    }
+    if (u == source && rules.leave && !rules.leave->allows(w)) return;
+    const Vec3 pw = node_position(mesh, w, vertices);
+    double step = (pw - node_position(mesh, u, vertices)).norm();
+    if (u >= vertices || w >= vertices) step *= 1 + rules.midpoint_penalty;
+    if (cost[u] + step < cost[w]) {
+      cost[w] = cost[u] + step;
+      parent[w] = u;
+      open.push({cost[w] + (pw - goal).norm(), w});
+    }
+  };
+
+  while (!open.empty()) {
+    const int u = open.top().second;
+    open.pop();
+    if (closed[u]) continue;
+    closed[u] = 1;
+    if (u == target) break;
+    if (u < vertices) {
+      // A vertex reaches its ring and the midpoints of the opposite edges.
+      for (int f : mesh.faces_of(u)) {
+        const Triangle& t = mesh.triangles()[f];
+        const int k = t[0] == u ? 0 : t[1] == u ? 1 : 2;
+        const int b = t[(k + 1) % 3], c = t[(k + 2) % 3];
+        relax(u, b);
+        relax(u, c);
+        if (rules.midpoints) relax(u, vertices + mesh.edge(b, c));
+      }
+    } else {
+      // A midpoint reaches the opposite vertices and the other edges' midpoints.
+      const int e = u - vertices;
+      const auto [x, y] = mesh.edge_vertices(e);
+      for (int f : mesh.edge_faces(e)) {
+        const Triangle& t = mesh.triangles()[f];
+        const int c = t[0] != x && t[0] != y ? t[0] : t[1] != x && t[1] != y ? t[1] : t[2];
+        relax(u, c);
+        if (rules.midpoints) {
+          relax(u, vertices + mesh.edge(x, c));
+          relax(u, vertices + mesh.edge(y, c));
+        }
+      }
+    }
+  }
+  if (!closed[target]) return {};
+  std::vector<int> path;
+  for (int n = target; n >= 0; n = parent[n]) path.push_back(n);
+  std::reverse(path.begin(), path.end());
+  return path;
+}
+
+}  // namespace cmaps
