@@ -35,6 +35,7 @@ struct ConstrainedResult {
   double max_constraint_error = 0;       // max |sphere[feature] - target|
   int auxiliary_vertices = 0;            // free base vertices added so the base encloses the centre
   int retraced_paths = 0;
+  int layout_flips = 0;                  // arcs flipped to shorter surface paths
   double seconds_paths = 0, seconds_simplify = 0, seconds_optimize = 0;
 };
 
