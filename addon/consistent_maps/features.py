@@ -99,7 +99,8 @@ def _assign(obj, group, vertex_index):
         bm = _edit_bmesh(obj)
         deform = bm.verts.layers.deform.verify()
         for v in bm.verts:
-            v[deform].pop(group.index, None)
+            if group.index in v[deform]:
+                del v[deform][group.index]
         bm.verts.ensure_lookup_table()
         bm.verts[vertex_index][deform][group.index] = 1.0
         bmesh.update_edit_mesh(obj.data)
