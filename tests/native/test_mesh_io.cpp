@@ -183,7 +183,7 @@ TEST_P(RoundTrip, KeepsConnectivityOrderAndPrecision) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Formats, RoundTrip, ::testing::Values(".obj", ".ply", ".off"),
-                         [](const auto& info) { return info.param.substr(1); });
+                         [](const auto& test) { return test.param.substr(1); });
 
 TEST(MeshIo, StlRoundTripKeepsTheSurface) {
   const std::string path = test::scratch_path(".stl");

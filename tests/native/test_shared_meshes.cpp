@@ -71,8 +71,8 @@ TEST_P(SharedMesh, MatchesReadme) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Readme, SharedMesh, ::testing::ValuesIn(readme_table()), [](const auto& info) {
-  std::string name = info.param.file;
+INSTANTIATE_TEST_SUITE_P(Readme, SharedMesh, ::testing::ValuesIn(readme_table()), [](const auto& test) {
+  std::string name = test.param.file;
   for (char& c : name)
     if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
   return name;

@@ -1,4 +1,5 @@
 """Shared fixtures: repository paths, the built module and CLI, and small bad meshes."""
+import os
 import pathlib
 import re
 import sys
@@ -7,7 +8,7 @@ import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 SHARED = ROOT.parent / "shared" / "meshes"
-CMAPS = ROOT / "build" / "cmaps"
+CMAPS = pathlib.Path(os.environ.get("CMAPS_BINARY", ROOT / "build" / "cmaps"))  # override: e.g. a sanitizer build
 sys.path.insert(0, str(ROOT / "addon"))
 
 
