@@ -1,0 +1,591 @@
+"""The add-on suite, run in real Blender (3.4 application and bpy 4.x module) by run_tests.py.
+
+Meshes come from ../shared/meshes through the native reader and bpy's data API
+(import operators differ between Blender versions). Every test starts from an
+empty scene with the add-on registered (reset()).
+"""
+import os
+import pathlib
+import re
+import subprocess
+import sys
+import tempfile
+import time
+import zipfile
+
+import bmesh
+import bpy
+import numpy as np
+
+import consistent_maps
+from consistent_maps import _native, api, features, job, overlay, registration, status
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+SHARED = ROOT.parent / "shared" / "meshes"
+OUT = ROOT / "out" / "blender"
+BALL = SHARED / "genus0" / "sphere.obj"  # 382 vertices: quick to map
+SPOT = SHARED / "genus0" / "spot_low.obj"
+IS_MODULE = not bpy.app.binary_path or "site-packages" in bpy.app.binary_path
+VERSION = ".".join(map(str, bpy.app.version))
+
+_loaded = {}
+
+
+# -- helpers ------------------------------------------------------------------------------------
+
+def reset():
+    if bpy.context.object is not None and bpy.context.object.mode != 'OBJECT':
+        bpy.ops.object.mode_set(mode='OBJECT')
+    if job.current() is not None:
+        job.current().cancel()
+        while not job.current().done:
+            time.sleep(0.01)
+        job.finish()
+    bpy.ops.wm.read_homefile(use_empty=True)
+
+
+def load(path, name=None, location=(0, 0, 0)):
+    """A new object with the mesh at path (read by the native reader), linked to the scene."""
+    if path not in _loaded:
+        _loaded[path] = _native.read_mesh(str(path))
+    vertices, triangles = _loaded[path]
+    mesh = bpy.data.meshes.new(name or path.stem)
+    mesh.from_pydata(vertices.tolist(), [], triangles.tolist())
+    mesh.update()
+    obj = bpy.data.objects.new(name or path.stem, mesh)
+    obj.location = location
+    bpy.context.scene.collection.objects.link(obj)
+    return obj
+
+
+def select(objects, active=None):
+    bpy.context.view_layer.update()  # new objects get their view layer base
+    for obj in bpy.context.view_layer.objects:
+        obj.select_set(obj in objects)
+    bpy.context.view_layer.objects.active = active or objects[0]
+
+
+def make_set(objects):
+    select(objects)
+    assert bpy.ops.consistent_maps.add_selected() == {'FINISHED'}
+    return objects
+
+
+def with_features(obj, names=("tip", "left", "right"), vertices=(0, 100, 200)):
+    for name, index in zip(names, vertices):
+        api.add_feature(obj, name, index)
+    return obj
+
+
+def expect_error(operator, fragment, **properties):
+    """Runs the operator, which must report an error containing fragment."""
+    try:
+        result = operator(**properties)
+    except RuntimeError as e:
+        assert fragment.lower() in str(e).lower(), f"expected '{fragment}' in: {e}"
+        return str(e)
+    raise AssertionError(f"expected an error containing '{fragment}', got {result}")
+
+
+def snapshot(obj):
+    """Everything the add-on could touch on an object, to prove it was left alone."""
+    mesh = obj.data
+    return (api.result_state(obj), sorted(a.name for a in mesh.attributes), sorted(mesh.keys()),
+            [g.name for g in obj.vertex_groups], mesh.shape_keys is not None,
+            consistent_maps.meshdata.fingerprint(mesh))
+
+
+def edit_select_vertices(obj, indices):
+    select([obj])
+    bpy.ops.object.mode_set(mode='EDIT')
+    bm = bmesh.from_edit_mesh(obj.data)
+    bm.verts.ensure_lookup_table()
+    for v in bm.verts:
+        v.select = v.index in indices
+    bm.select_flush(True)
+    bmesh.update_edit_mesh(obj.data)
+
+
+def on_unit_sphere(points):
+    return np.allclose(np.linalg.norm(points, axis=1), 1, atol=1e-4)
+
+
+# -- package, manifest, registration -----------------------------------------------------------
+
+def test_manifest_is_a_valid_extension_manifest():
+    import tomllib
+    manifest = tomllib.loads((ROOT / "blender_manifest.toml").read_text())
+    required = {"schema_version": str, "id": str, "version": str, "name": str, "tagline": str,
+                "maintainer": str, "type": str, "blender_version_min": str, "license": list}
+    for key, kind in required.items():
+        assert isinstance(manifest.get(key), kind), f"manifest: '{key}' missing or not a {kind.__name__}"
+    assert manifest["schema_version"] == "1.0.0"
+    assert manifest["id"] == "consistent_maps" and manifest["type"] == "add-on"
+    assert re.fullmatch(r"\d+\.\d+\.\d+", manifest["version"])
+    assert manifest["version"] == ".".join(map(str, consistent_maps.bl_info["version"])), "manifest vs bl_info"
+    cmake_version = re.search(r"project\(consistent_maps VERSION (\S+)", (ROOT / "CMakeLists.txt").read_text())
+    assert cmake_version and cmake_version.group(1) == manifest["version"], "manifest vs CMake project version"
+    assert len(manifest["tagline"]) <= 64 and manifest["tagline"][-1] not in ".!?", "tagline rules"
+    assert tuple(map(int, manifest["blender_version_min"].split("."))) >= (4, 2, 0)
+    assert all(entry.startswith("SPDX:") for entry in manifest["license"])
+    assert manifest.get("platforms") == ["linux-x64"]
+    assert "permissions" not in manifest, "the add-on uses no network or file access: no permissions"
+
+
+def _package_zip():
+    version = ".".join(map(str, consistent_maps.bl_info["version"]))
+    path = pathlib.Path(os.environ.get("CMAPS_ADDON_ZIP", ROOT / "dist" / f"consistent_maps-{version}.zip"))
+    assert path.exists(), f"{path} is missing: cmake --build build --target package_addon"
+    return path
+
+
+def test_package_zip_layout():
+    names = zipfile.ZipFile(_package_zip()).namelist()
+    for required in ("consistent_maps/__init__.py", "consistent_maps/blender_manifest.toml",
+                     "consistent_maps/api.py"):
+        assert required in names, f"{required} not in the zip"
+    assert any(re.fullmatch(r"consistent_maps/_native\..*\.so", n) for n in names), "compiled module missing"
+    assert all(n.startswith("consistent_maps/") for n in names), "one folder at the zip root"
+    assert not any("__pycache__" in n or n.endswith(".pyc") for n in names)
+
+
+def test_package_zip_installs():
+    """3.4: Preferences > Add-ons > Install and enable, in a fresh Blender with its own user scripts.
+    4.2+ (bpy module): Blender's extension tool validates the zip as an extension."""
+    package = _package_zip()
+    with tempfile.TemporaryDirectory() as scripts:
+        if IS_MODULE:
+            tool = pathlib.Path(bpy.utils.resource_path('LOCAL')) / "scripts/addons_core/bl_pkg/cli/blender_ext.py"
+            command = [sys.executable, str(tool), "validate", str(package)]
+        else:
+            code = ("import bpy, addon_utils, sys;"
+                    f"bpy.ops.preferences.addon_install(filepath={str(package)!r});"
+                    "addon_utils.enable('consistent_maps', default_set=True, handle_error=None);"
+                    "assert hasattr(bpy.types.Scene, 'consistent_maps');"
+                    "import consistent_maps.api, consistent_maps._native;"
+                    "assert consistent_maps.__file__.startswith(bpy.utils.user_resource('SCRIPTS'));"
+                    "print('INSTALLED-OK')")
+            command = [bpy.app.binary_path, "-b", "--factory-startup", "--python-exit-code", "1",
+                       "--python-expr", code]
+        env = dict(os.environ, BLENDER_USER_SCRIPTS=scripts, BLENDER_USER_CONFIG=scripts)
+        done = subprocess.run(command, capture_output=True, text=True, env=env, timeout=120)
+        output = done.stdout + done.stderr
+        assert done.returncode == 0, output[-3000:]
+        assert IS_MODULE or "INSTALLED-OK" in output, output[-3000:]
+
+
+def test_register_unregister():
+    assert hasattr(bpy.types.Scene, "consistent_maps") and hasattr(bpy.types, "CM_PT_main")
+    consistent_maps.unregister()
+    assert not hasattr(bpy.types.Scene, "consistent_maps")
+    assert not hasattr(bpy.types, "CM_PT_main") and not hasattr(bpy.types, "CONSISTENT_MAPS_OT_compute")
+    assert not any(registration._forget_cached_features in h for h in registration.HANDLERS)
+    consistent_maps.register()
+    assert hasattr(bpy.types.Scene, "consistent_maps") and hasattr(bpy.types, "CONSISTENT_MAPS_OT_compute")
+
+
+def test_every_operator_is_undoable():
+    operators = [c for c in registration.CLASSES if issubclass(c, bpy.types.Operator)]
+    assert len(operators) == 11
+    for cls in operators:
+        if cls.bl_idname != "consistent_maps.cancel":  # cancelling changes no data
+            assert 'UNDO' in cls.bl_options, cls.bl_idname
+
+
+def test_overlay_is_not_installed_in_background():
+    assert bpy.app.background and overlay._handles == []
+
+
+# -- the set ------------------------------------------------------------------------------------
+
+def test_set_operators():
+    expect_error(bpy.ops.consistent_maps.add_selected, "select one or more mesh")
+    a, b, c = load(BALL, "A"), load(BALL, "B"), load(BALL, "C")
+    make_set([a, b])
+    select([b, c])
+    bpy.ops.consistent_maps.add_selected()  # B is already there: only C is added
+    settings = bpy.context.scene.consistent_maps
+    assert [m.object.name for m in settings.members] == ["A", "B", "C"]
+    settings.active_member = 2
+    assert bpy.ops.consistent_maps.move_member(direction='UP') == {'FINISHED'}
+    assert [m.object.name for m in settings.members] == ["A", "C", "B"] and settings.active_member == 1
+    bpy.ops.consistent_maps.move_member(direction='DOWN')
+    assert [m.object.name for m in settings.members] == ["A", "B", "C"]
+    settings.active_member = 0
+    assert bpy.ops.consistent_maps.move_member(direction='UP') == {'CANCELLED'}
+    assert bpy.ops.consistent_maps.remove_member() == {'FINISHED'}
+    assert [m.object.name for m in settings.members] == ["B", "C"]
+    assert "A" in bpy.data.objects, "removing from the set keeps the object"
+
+
+# -- features -----------------------------------------------------------------------------------
+
+def test_feature_api():
+    a, b = load(BALL, "A"), load(BALL, "B")
+    assert api.add_feature(a, "  nose ", 5) == "nose"
+    assert a.vertex_groups.get("CM:nose") and api.features(a) == {"nose": 5}
+    api.add_feature(a, "nose", 7)  # moves it
+    assert api.features(a) == {"nose": 7}
+    for bad, message in ((("", 1), "empty"), (("x", 10**6), "no vertex"), (("ear", 7), "already feature")):
+        try:
+            api.add_feature(a, *bad)
+            raise AssertionError(f"add_feature{bad} should fail")
+        except api.FeatureError as e:
+            assert message in str(e), e
+    assert features.next_free_name([a]) == "F1"
+    api.add_feature(a, "F1", 8)
+    assert features.next_free_name([a, b]) == "F2"
+    assert api.copy_feature_names(a, [b]) == 2
+    assert features.memberships(b) == {"nose": [], "F1": []} and api.features(b) == {}
+    assert api.rename_feature([a, b], "F1", "chin") == "chin"
+    assert set(features.memberships(b)) == {"nose", "chin"} and api.features(a)["chin"] == 8
+    api.add_feature(b, "ear", 9)
+    try:
+        api.rename_feature([a, b], "chin", "ear")
+        raise AssertionError("renaming onto an existing name should fail")
+    except api.FeatureError as e:
+        assert "already has a feature named 'ear'" in str(e)
+    assert api.delete_feature([a, b], "chin") == 2 and "chin" not in features.memberships(b)
+
+
+def test_feature_problems_are_plain():
+    a, b = load(BALL, "A"), load(BALL, "B")
+    with_features(a)
+    api.add_feature(b, "tip", 0)
+    b.vertex_groups.new(name="CM:left")
+    b.vertex_groups["CM:left"].add([1, 2], 1.0, 'REPLACE')
+    problems = "\n".join(api.feature_problems([a, b]))
+    assert "'left' on 'B' has 2 vertices" in problems
+    assert "Feature 'right' is missing on 'B'" in problems
+    assert "shares 1 feature(s); at least 3" in problems
+    assert api.feature_problems([a]) == []
+
+
+def test_add_feature_operator_in_edit_mode():
+    a = load(BALL, "A")
+    make_set([a])
+    edit_select_vertices(a, {3, 4})
+    expect_error(bpy.ops.consistent_maps.add_feature, "exactly one vertex (2 selected)")
+    edit_select_vertices(a, {3})
+    assert bpy.ops.consistent_maps.add_feature() == {'FINISHED'}  # no name: the next free one
+    edit_select_vertices(a, {10})
+    assert bpy.ops.consistent_maps.add_feature(name="ear") == {'FINISHED'}
+    assert api.features(a) == {"F1": 3, "ear": 10}, "read in Edit Mode"
+    bpy.ops.object.mode_set(mode='OBJECT')
+    assert api.features(a) == {"F1": 3, "ear": 10}, "kept after leaving Edit Mode"
+    assert bpy.ops.consistent_maps.add_feature.poll() is False, "needs Edit Mode"
+
+
+def test_rename_delete_copy_select_operators():
+    a, b = load(BALL, "A"), load(BALL, "B")
+    with_features(a)
+    make_set([a, b])
+    select([a])
+    assert bpy.ops.consistent_maps.copy_feature_names() == {'FINISHED'}
+    assert set(features.memberships(b)) == {"tip", "left", "right"} and api.features(b) == {}
+    assert bpy.ops.consistent_maps.rename_feature(name="tip", new_name="nose") == {'FINISHED'}
+    assert "nose" in features.memberships(a) and "nose" in features.memberships(b)
+    expect_error(bpy.ops.consistent_maps.rename_feature, "no object has a feature named", name="x", new_name="y")
+    a.vertex_groups.active_index = a.vertex_groups["CM:left"].index
+    assert bpy.ops.consistent_maps.delete_feature() == {'FINISHED'}  # the active feature, this object only
+    assert "left" not in features.memberships(a) and "left" in features.memberships(b)
+    assert bpy.ops.consistent_maps.delete_feature(name="left", everywhere=True) == {'FINISHED'}
+    assert "left" not in features.memberships(b)
+    expect_error(bpy.ops.consistent_maps.delete_feature, "no feature 'left'", name="left")
+    assert bpy.ops.consistent_maps.select_feature(name="right") == {'FINISHED'}
+    assert a.mode == 'EDIT'
+    selected = [v.index for v in bmesh.from_edit_mesh(a.data).verts if v.select]
+    assert selected == [200], selected
+    bpy.ops.object.mode_set(mode='OBJECT')
+    select([b])
+    expect_error(bpy.ops.consistent_maps.select_feature, "no placed feature 'right'", name="right")
+    bpy.context.scene.consistent_maps.members.clear()
+    expect_error(bpy.ops.consistent_maps.copy_feature_names, "no other object")
+
+
+def test_overlay_points_follow_features_and_preview():
+    a, b = load(BALL, "A"), load(BALL, "B", location=(3, 0, 0))
+    make_set([with_features(a), with_features(b)])
+    points = overlay.feature_points(bpy.context)
+    assert len(points) == 6
+    by_name = {}
+    for position, colour, name in points:
+        by_name.setdefault(name, set()).add(colour)
+    assert all(len(colours) == 1 for colours in by_name.values()), "same name, same colour"
+    assert abs(points[3][0].x - points[0][0].x - 3) < 1e-5, "world space"
+    api.compute([a, b], effort=0)
+    api.show_sphere(a)
+    bpy.context.view_layer.update()
+    radius = 0.5 * max(a.dimensions)
+    centre = np.mean([list(v) for v in a.bound_box], axis=0)
+    for position, _, _ in overlay.feature_points(bpy.context)[:3]:
+        assert abs(np.linalg.norm(np.array(position) - centre) - radius) < 0.05 * radius, "on the preview sphere"
+
+
+# -- compute ------------------------------------------------------------------------------------
+
+def test_compute_operator_stores_results():
+    a, b = with_features(load(BALL, "A")), with_features(load(BALL, "B"))
+    make_set([a, b])
+    bpy.context.scene.consistent_maps.effort = '0'
+    assert bpy.ops.consistent_maps.compute() == {'FINISHED'}
+    for obj in (a, b):
+        sphere = api.sphere(obj)
+        assert sphere.shape == (len(obj.data.vertices), 3) and on_unit_sphere(sphere)
+        attribute = obj.data.attributes["cm_sphere"]
+        assert (attribute.domain, attribute.data_type) == ('POINT', 'FLOAT_VECTOR')
+        stats = consistent_maps.results.stats(obj.data)
+        assert stats["bijective"] and 0 < stats["efficiency"] <= 1 and stats["seconds"] > 0
+        assert status.of(obj).result == "CURRENT"
+        assert obj.data.shape_keys is None, "no preview unless asked"
+
+
+def test_compute_invoke_runs_synchronously_in_background():
+    a = load(BALL, "A")
+    make_set([a])
+    assert bpy.ops.consistent_maps.compute('INVOKE_DEFAULT') == {'FINISHED'}
+    assert api.result_state(a) == "CURRENT"
+
+
+def test_compute_triangulates_ngons():
+    """A hexagonal prism of quads and n-gons: one sphere position per original vertex."""
+    ring = [(np.cos(a), np.sin(a)) for a in np.linspace(0, 2 * np.pi, 6, endpoint=False)]
+    vertices = [(x, y, z) for z in (-1, 1) for x, y in ring]
+    faces = [tuple(range(5, -1, -1)), tuple(range(6, 12))] + [(i, (i + 1) % 6, (i + 1) % 6 + 6, i + 6)
+                                                             for i in range(6)]
+    mesh = bpy.data.meshes.new("prism")
+    mesh.from_pydata(vertices, [], faces)
+    obj = bpy.data.objects.new("prism", mesh)
+    bpy.context.scene.collection.objects.link(obj)
+    arrays = consistent_maps.meshdata.extract(obj)
+    assert arrays.triangles.shape == (2 * 4 + 6 * 2, 3) and arrays.vertices.shape == (12, 3)
+    api.compute([obj], effort=0)
+    sphere = api.sphere(obj)
+    assert sphere.shape == (12, 3) and on_unit_sphere(sphere)
+    assert len(mesh.polygons) == 8, "the mesh itself stays as it was"
+
+
+def test_stale_detection():
+    a = load(BALL, "A")
+    api.compute([a], effort=0)
+    assert api.result_state(a) == "CURRENT" and status.of(a).result == "CURRENT"
+    a.data.vertices[5].co.x += 0.01
+    assert api.result_state(a) == "STALE" and status.of(a).result == "STALE"
+    assert api.sphere(a) is None
+    try:
+        api.show_sphere(a)
+        raise AssertionError("a stale result must not be previewed")
+    except api.PreviewError as e:
+        assert "stale" in str(e)
+    a.data.vertices[5].co.x -= 0.01
+    assert api.result_state(a) == "CURRENT", "undoing the edit makes it current again"
+    api.compute([a], effort=0)
+    assert api.result_state(a) == "CURRENT"
+
+
+def test_save_and_reload_keeps_results():
+    a = with_features(load(BALL, "A"))
+    make_set([a])
+    api.compute([a], effort=0)
+    api.show_sphere(a)
+    sphere = api.sphere(a).copy()
+    with tempfile.TemporaryDirectory() as folder:
+        path = os.path.join(folder, "results.blend")
+        bpy.ops.wm.save_as_mainfile(filepath=path)
+        bpy.ops.wm.read_homefile(use_empty=True)
+        assert "A" not in bpy.data.objects
+        bpy.ops.wm.open_mainfile(filepath=path)
+    a = bpy.data.objects["A"]
+    assert [m.object for m in bpy.context.scene.consistent_maps.members] == [a]
+    assert api.result_state(a) == "CURRENT" and np.array_equal(api.sphere(a), sphere)
+    assert api.features(a) == {"tip": 0, "left": 100, "right": 200}
+    assert consistent_maps.results.stats(a.data)["bijective"]
+    assert a.data.shape_keys.key_blocks["CM Sphere"].value == 1.0
+
+
+def test_sphere_preview_operator():
+    a = load(BALL, "A")
+    make_set([a])
+    expect_error(bpy.ops.consistent_maps.sphere_preview, "no result yet", show=True)
+    before = snapshot(a)
+    bpy.ops.consistent_maps.compute()
+    assert bpy.ops.consistent_maps.sphere_preview(show=True) == {'FINISHED'}
+    keys = a.data.shape_keys.key_blocks
+    assert [k.name for k in keys] == ["Basis", "CM Sphere"] and keys["CM Sphere"].value == 1
+    co = np.array([list(k.co) for k in keys["CM Sphere"].data])
+    centre = (co.max(axis=0) + co.min(axis=0)) / 2
+    distances = np.linalg.norm(co - centre, axis=1)
+    assert np.allclose(distances, distances[0], rtol=1e-3), "the key is a sphere"
+    assert api.result_state(a) == "CURRENT", "the preview does not make the result stale"
+    assert bpy.ops.consistent_maps.sphere_preview(show=False) == {'FINISHED'}
+    assert a.data.shape_keys is None, "hiding removes the keys the preview added"
+    assert snapshot(a)[3:] == before[3:]
+    bpy.context.scene.consistent_maps.members.clear()
+    expect_error(bpy.ops.consistent_maps.sphere_preview, "set is empty")
+
+
+def test_threaded_job_leaves_the_main_thread_free_and_applies():
+    spot = with_features(load(SPOT, "Spot"))
+    tasks = api.prepare([spot])
+    running = job.start(tasks, {"effort": 0, "threads": 1})
+    assert bpy.ops.consistent_maps.compute.poll() is False, "one computation at a time"
+    longest, last = 0.0, time.perf_counter()
+    while not running.done:
+        time.sleep(0.005)
+        now = time.perf_counter()
+        longest, last = max(longest, now - last), now
+    assert running.error is None and not running.cancelled and running.fraction > 0.5
+    assert longest < 0.1, f"main thread blocked for {longest:.3f} s"
+    assert api.result_state(spot) == "NONE", "nothing is stored before apply"
+    api.apply(running.tasks, running.outputs)
+    job.finish()
+    assert api.result_state(spot) == "CURRENT" and on_unit_sphere(api.sphere(spot))
+
+
+def test_cancel_operator_stops_the_job_and_changes_nothing():
+    spot = with_features(load(SPOT, "Spot"))
+    before = snapshot(spot)
+    assert bpy.ops.consistent_maps.cancel.poll() is False
+    running = job.start(api.prepare([spot]), {"effort": 1, "threads": 1})
+    while running.stage == "starting" and not running.done:  # wait for the first progress report
+        time.sleep(0.005)
+    assert bpy.ops.consistent_maps.cancel() == {'FINISHED'}
+    while not running.done:
+        time.sleep(0.01)
+    assert running.cancelled and running.outputs is None
+    job.finish()
+    assert snapshot(spot) == before
+
+
+def test_cancel_through_progress_callback():
+    a = load(BALL, "A")
+    before = snapshot(a)
+    try:
+        api.compute([a], effort=0, progress=lambda fraction, stage: False)
+        raise AssertionError("returning False must cancel")
+    except api.Cancelled:
+        pass
+    assert snapshot(a) == before
+
+
+def test_apply_refuses_a_mesh_edited_during_the_computation():
+    a = load(BALL, "A")
+    tasks = api.prepare([a])
+    outputs = api.run(tasks, effort=0)
+    a.data.vertices[0].co.z += 0.1
+    before = snapshot(a)
+    try:
+        api.apply(tasks, outputs)
+        raise AssertionError("apply must refuse")
+    except api.ComputeError as e:
+        assert "changed during the computation" in str(e)
+    assert snapshot(a) == before
+
+
+# -- error paths: a plain message, nothing modified ----------------------------------------------
+
+def _refused(path, fragment, extra=None):
+    bad = load(path, "Bad")
+    good = load(BALL, "Good")
+    objects = [bad, good] if extra is None else [bad, good, extra]
+    for obj in objects:
+        with_features(obj, vertices=(0, 1, 2))
+    make_set(objects)
+    before = [snapshot(obj) for obj in objects]
+    message = expect_error(bpy.ops.consistent_maps.compute, fragment)
+    assert "'Bad'" in message, message
+    assert [snapshot(obj) for obj in objects] == before, "nothing modified"
+    return message
+
+
+def test_error_non_manifold():
+    message = _refused(SHARED / "invalid" / "dino_nonmanifold_edges.off", "non-manifold")
+    assert "Select All by Trait > Non Manifold" in message
+    assert status.of(bpy.data.objects["Bad"]).manifold is False
+
+
+def test_error_several_components():
+    _refused(SHARED / "invalid" / "teapot_newell_nonmanifold.obj", "components")
+
+
+def test_error_higher_genus():
+    _refused(SHARED / "higher-genus" / "torus.obj", "genus 1")
+    assert status.of(bpy.data.objects["Bad"]).genus == 1
+
+
+def test_error_open_mesh():
+    _refused(SHARED / "boundary" / "face_disk.off", "boundary")
+
+
+def test_error_missing_and_unplaced_features():
+    a, b = with_features(load(BALL, "A")), load(BALL, "B")
+    api.add_feature(b, "tip", 0)
+    b.vertex_groups.new(name="CM:left")
+    make_set([a, b])
+    before = [snapshot(a), snapshot(b)]
+    message = expect_error(bpy.ops.consistent_maps.compute, "missing on 'B'")
+    assert "'left' is not placed on 'B'" in message and "at least 3" in message
+    assert [snapshot(a), snapshot(b)] == before
+
+
+def test_error_empty_set_and_loose_vertex():
+    expect_error(bpy.ops.consistent_maps.compute, "set is empty")
+    a = load(BALL, "A")
+    a.data.vertices.add(1)
+    make_set([a])
+    expect_error(bpy.ops.consistent_maps.compute, "unreferenced vertex")
+
+
+def test_compute_leaves_edit_mode_first():
+    a = load(BALL, "A")
+    make_set([a])
+    edit_select_vertices(a, {0})
+    assert bpy.ops.consistent_maps.compute() == {'FINISHED'}
+    assert a.mode == 'OBJECT' and api.result_state(a) == "CURRENT"
+    edit_select_vertices(a, {0})
+    try:
+        api.compute([a])
+        raise AssertionError("the API refuses objects in Edit Mode")
+    except api.ComputeError as e:
+        assert "Edit Mode" in str(e)
+    bpy.ops.object.mode_set(mode='OBJECT')
+
+
+# -- visual check -------------------------------------------------------------------------------
+
+def _colour_by_position(obj):
+    """A point colour attribute from the original positions, so the sphere shows where each part went."""
+    co = np.array([list(v.co) for v in obj.data.vertices])
+    rgb = (co - co.min(axis=0)) / (co.max(axis=0) - co.min(axis=0))
+    rgba = np.hstack([rgb, np.ones((len(rgb), 1))]).astype(np.float32)
+    obj.data.attributes.new("where", 'FLOAT_COLOR', 'POINT').data.foreach_set("color", rgba.ravel())
+    obj.data.attributes.active_color = obj.data.attributes["where"]
+
+
+def test_render_sphere_preview():
+    """Workbench render of Spot next to its sphere preview, both coloured by the original position:
+    out/blender/sphere_preview-<version>.png."""
+    spot = with_features(load(SPOT, "Spot", location=(-1.1, 0, 0)))
+    ball = with_features(load(SPOT, "Spot sphere", location=(1.1, 0, 0)))
+    for obj in (spot, ball):
+        obj.rotation_euler = (np.pi / 2, 0, -3 * np.pi / 4)  # Spot's OBJ is y-up
+        _colour_by_position(obj)
+    make_set([spot, ball])
+    api.compute([spot, ball], effort=0)
+    api.show_sphere(ball)
+    scene = bpy.context.scene
+    camera = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
+    scene.collection.objects.link(camera)
+    camera.data.type = 'ORTHO'
+    camera.data.ortho_scale = 4.4
+    camera.location = (0, -5, 0.1)
+    camera.rotation_euler = (np.pi / 2, 0, 0)
+    scene.camera = camera
+    scene.render.engine = 'BLENDER_WORKBENCH'
+    scene.display.shading.light = 'STUDIO'
+    scene.display.shading.color_type = 'VERTEX'
+    scene.render.resolution_x, scene.render.resolution_y = 640, 320
+    OUT.mkdir(parents=True, exist_ok=True)
+    scene.render.filepath = str(OUT / f"sphere_preview-{VERSION}.png")
+    bpy.ops.render.render(write_still=True)
+    assert os.path.getsize(scene.render.filepath) > 5000
