@@ -82,13 +82,16 @@ SphereLocator::SphereLocator(std::vector<Vec3> sphere, std::vector<Triangle> tri
   resolution_ = std::max(1, static_cast<int>(std::ceil(std::sqrt(indexed.size() / 3.0))));
   const int cells = 6 * resolution_ * resolution_;
 
-  // Each triangle's cone is clipped to each face's pyramid; the cells under
-  // the bounding box of the clipped part's gnomonic image get the triangle.
-  struct Box {
-    int triangle, face, u0, u1, v0, v1;
+  // Each triangle's cone is clipped to each face's pyramid and projected
+  // gnomonically; every cell its image overlaps lists it, largest overlap
+  // first, so the first candidate tested is usually the answer.
+  struct Entry {
+    int cell;
+    double overlap;
+    int triangle;
   };
-  std::vector<Box> boxes;
-  std::vector<Vec3> polygon, scratch;
+  std::vector<Entry> entries;
+  std::vector<Vec3> polygon, image, cell_part, scratch;  // 2D points as (u, v, 1) so `clip` applies
   for (int t : indexed) {
     for (int f = 0; f < 6; ++f) {
       const CubeFace face = cube_face(f);
@@ -101,31 +104,46 @@ SphereLocator::SphereLocator(std::vector<Vec3> sphere, std::vector<Triangle> tri
         clip(polygon, axis + side, scratch);
       }
       if (polygon.empty()) continue;
-      double u0 = 1, u1 = -1, v0 = 1, v1 = -1;
+      image.clear();
       for (const Vec3& p : polygon) {
         const double depth = p[face.k] * face.s;
         if (!(depth > 0)) {  // only a cone reaching the origin gets here; take the whole face
-          u0 = v0 = -1;
-          u1 = v1 = 1;
+          image = {Vec3(-2, -2, 1), Vec3(2, -2, 1), Vec3(2, 2, 1), Vec3(-2, 2, 1)};
           break;
         }
-        const double u = p[face.i] / depth, v = p[face.j] / depth;
-        u0 = std::min(u0, u), u1 = std::max(u1, u), v0 = std::min(v0, v), v1 = std::max(v1, v);
+        image.emplace_back(p[face.i] / depth, p[face.j] / depth, 1);
       }
-      boxes.push_back({t, f, cell_coordinate(u0 - kSlack, resolution_), cell_coordinate(u1 + kSlack, resolution_),
-                       cell_coordinate(v0 - kSlack, resolution_), cell_coordinate(v1 + kSlack, resolution_)});
+      double u0 = 1, u1 = -1, v0 = 1, v1 = -1;
+      for (const Vec3& p : image) u0 = std::min(u0, p[0]), u1 = std::max(u1, p[0]), v0 = std::min(v0, p[1]), v1 = std::max(v1, p[1]);
+      const double width = 2.0 / resolution_;
+      for (int cu = cell_coordinate(u0 - kSlack, resolution_); cu <= cell_coordinate(u1 + kSlack, resolution_); ++cu) {
+        for (int cv = cell_coordinate(v0 - kSlack, resolution_); cv <= cell_coordinate(v1 + kSlack, resolution_); ++cv) {
+          cell_part = image;
+          const double x0 = -1 + cu * width - kSlack, x1 = x0 + width + 2 * kSlack;
+          const double y0 = -1 + cv * width - kSlack, y1 = y0 + width + 2 * kSlack;
+          clip(cell_part, Vec3(1, 0, -x0), scratch);
+          clip(cell_part, Vec3(-1, 0, x1), scratch);
+          clip(cell_part, Vec3(0, 1, -y0), scratch);
+          clip(cell_part, Vec3(0, -1, y1), scratch);
+          if (cell_part.empty()) continue;
+          double area = 0;
+          for (size_t q = 0; q < cell_part.size(); ++q) {
+            const Vec3 &a = cell_part[q], &b = cell_part[(q + 1) % cell_part.size()];
+            area += a[0] * b[1] - a[1] * b[0];
+          }
+          entries.push_back({(f * resolution_ + cu) * resolution_ + cv, std::abs(area), t});
+        }
+      }
     }
   }
-  auto for_each_cell = [&](const Box& box, auto&& body) {
-    for (int cu = box.u0; cu <= box.u1; ++cu)
-      for (int cv = box.v0; cv <= box.v1; ++cv) body((box.face * resolution_ + cu) * resolution_ + cv);
-  };
+  std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
+    return a.cell != b.cell ? a.cell < b.cell : a.overlap > b.overlap;
+  });
   cell_start_.assign(cells + 1, 0);
-  for (const Box& box : boxes) for_each_cell(box, [&](int cell) { ++cell_start_[cell + 1]; });
+  for (const Entry& e : entries) ++cell_start_[e.cell + 1];
   for (int c = 0; c < cells; ++c) cell_start_[c + 1] += cell_start_[c];
-  cell_triangles_.resize(cell_start_[cells]);
-  std::vector<int> fill(cell_start_.begin(), cell_start_.end() - 1);
-  for (const Box& box : boxes) for_each_cell(box, [&](int cell) { cell_triangles_[fill[cell]++] = box.triangle; });
+  cell_triangles_.resize(entries.size());
+  for (size_t e = 0; e < entries.size(); ++e) cell_triangles_[e] = entries[e].triangle;
 }
 
 int SphereLocator::cell_of(const Vec3& d) const {
