@@ -172,7 +172,8 @@ GeometryImage read_geometry_image_png(const std::string& path) {
       for (int c = 0; c < 3; ++c) {
         const size_t k = i * row + 1 + 6 * j + 2 * c;
         const int q = static_cast<unsigned char>(raw[k]) << 8 | static_cast<unsigned char>(raw[k + 1]);
-        image.pixels[i * side + j][c] = lo[c] + (hi[c] - lo[c]) * (q / 65535.0);
+        const double t = q / 65535.0;  // this form gives back lo and hi exactly
+        image.pixels[i * side + j][c] = (1 - t) * lo[c] + t * hi[c];
       }
   }
   return image;
