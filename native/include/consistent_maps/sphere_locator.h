@@ -59,6 +59,8 @@ class SphereLocator {
   };
 
   int cell_of(const Vec3& direction) const;
+  int checked_cell_of(const Vec3& direction) const;  // throws for a zero or non-finite direction
+  SphereLocation locate_in_cell(const Vec3& direction, int cell) const;
   void check_values(size_t rows) const;  // throws unless one row per vertex
   const Triangle& corners(const SphereLocation& location) const;  // throws for a bad triangle index
 
