@@ -78,9 +78,13 @@ std::vector<int> shortest_path(const EditableMesh& mesh, int source, int target,
         if (rules.midpoints) relax(u, vertices + mesh.edge(b, c));
       }
     } else {
-      // A midpoint reaches the opposite vertices and the other edges' midpoints.
+      // A midpoint reaches its edge's ends (once split, the halves are edges;
+      // without them a path could only turn back through the triangle it
+      // came from), the opposite vertices and the other edges' midpoints.
       const int e = u - vertices;
       const auto [x, y] = mesh.edge_vertices(e);
+      relax(u, x);
+      relax(u, y);
       for (int f : mesh.edge_faces(e)) {
         const Triangle& t = mesh.triangles()[f];
         const int c = t[0] != x && t[0] != y ? t[0] : t[1] != x && t[1] != y ? t[1] : t[2];

@@ -65,6 +65,13 @@ int farthest_vertex(const std::vector<Vec3>& x, const std::vector<int>& chosen) 
   return best;
 }
 
+Vec3 on_surface(const SurfacePoint& p, const std::vector<Vec3>& vertices) {
+  Vec3 x = Vec3::Zero();
+  for (int s = 0; s < 3; ++s)
+    if (p.vertices[s] >= 0) x += p.weights[s] * vertices[p.vertices[s]];
+  return x;
+}
+
 }  // namespace
 
 ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mesh, const std::vector<int>& features,
@@ -78,25 +85,29 @@ ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mes
   const int n = static_cast<int>(mesh.vertices.size());
   const int k = static_cast<int>(features.size());
 
-  // Step 1 of the thesis when no targets are given.
-  double begin = 0;
-  if (given_targets.empty()) {
-    ProgressCallback unconstrained;
-    if (progress) unconstrained = [&](double f, const std::string& stage) { return progress(0.4 * f, stage); };
-    const SphereResult free = spherical_parameterization(mesh, options, unconstrained);
-    for (int v : features) result.targets.push_back(free.sphere[v]);
-    begin = 0.4;
-  } else {
-    for (const Vec3& t : given_targets) result.targets.push_back(t.normalized());
-  }
-
-  // Work on an outward-oriented, normalized copy.
-  const auto paths_start = std::chrono::steady_clock::now();
+  // Work on an outward-oriented, normalized copy, so that the layout on the
+  // mesh and on the sphere turn the same way.
   std::vector<Vec3> positions = normalized_positions(mesh.vertices, mesh.triangles);
   std::vector<Triangle> triangles = mesh.triangles;
   const bool inverted = signed_volume(positions, triangles) < 0;
   if (inverted)
     for (Triangle& t : triangles) std::swap(t[1], t[2]);
+
+  // The unconstrained map guides the paths (below) and, without given
+  // targets, provides them (step 1 of the thesis); a quick one suffices as a
+  // guide alone.
+  SphereOptions guide_options = options;
+  if (!given_targets.empty()) guide_options.effort = 0;
+  ProgressCallback unconstrained;
+  if (progress) unconstrained = [&](double f, const std::string& stage) { return progress(0.3 * f, stage); };
+  const SphereResult guide = spherical_parameterization({mesh.vertices, triangles}, guide_options, unconstrained);
+  const double begin = 0.3;
+  if (given_targets.empty()) {
+    for (int v : features) result.targets.push_back(guide.sphere[v]);
+  } else {
+    for (const Vec3& t : given_targets) result.targets.push_back(t.normalized());
+  }
+  const auto paths_start = std::chrono::steady_clock::now();
 
   // Free base vertices until the targets' hull encloses the centre, so every
   // base triangle is smaller than a hemisphere.
@@ -105,12 +116,15 @@ ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mes
   while (const auto extra = point_to_enclose_origin(points)) {
     if (++result.auxiliary_vertices > 8) throw Error("internal error: cannot enclose the centre");
     points.push_back(*extra);
-    base_vertices.push_back(farthest_vertex(positions, base_vertices));
+    base_vertices.push_back(farthest_vertex(guide.sphere, base_vertices));
   }
   const auto hull = convex_hull_on_sphere(points);
   if (!hull) throw Error("internal error: targets are coplanar after adding free vertices");
 
-  EditableMesh editable({positions, triangles});
+  // Paths are traced in the guide's metric: there they follow great-circle
+  // arcs, so they pass features on the same side as the arcs between the
+  // targets do whenever the targets are laid out like the guide (no swirls).
+  EditableMesh editable({guide.sphere, triangles});
   const PathNetwork network =
       trace_path_network(editable, base_vertices, points, *hull, ProgressSlice(progress, "paths", begin, begin + 0.1));
   result.retraced_paths = network.retraced;
@@ -119,7 +133,8 @@ ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mes
 
   // Simplify down to the features, collapsing path vertices along their paths.
   const auto simplify_start = std::chrono::steady_clock::now();
-  const TriangleMesh refined{editable.positions(), editable.triangles()};
+  TriangleMesh refined{std::vector<Vec3>(editable.vertex_count()), editable.triangles()};
+  for (int v = 0; v < editable.vertex_count(); ++v) refined.vertices[v] = on_surface(editable.surface_point(v), positions);
   SimplificationOptions simplification;
   simplification.locked.assign(refined.vertices.size(), 0);
   for (int v : base_vertices) simplification.locked[v] = 1;
@@ -156,12 +171,8 @@ ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mes
     for (Triangle& t : result.triangles) std::swap(t[1], t[2]);
   // Measure on the refined triangulation with original coordinates.
   TriangleMesh measured{std::vector<Vec3>(sphere.size()), result.triangles};
-  for (int v = 0; v < static_cast<int>(sphere.size()); ++v) {
-    const SurfacePoint& p = editable.surface_point(v);
-    measured.vertices[v] = Vec3::Zero();
-    for (int s = 0; s < 3; ++s)
-      if (p.vertices[s] >= 0) measured.vertices[v] += p.weights[s] * mesh.vertices[p.vertices[s]];
-  }
+  for (int v = 0; v < static_cast<int>(sphere.size()); ++v)
+    measured.vertices[v] = on_surface(editable.surface_point(v), mesh.vertices);
   // An inverted input maps with the opposite orientation: measure it mirrored.
   std::vector<Vec3> oriented = sphere;
   if (inverted)
