@@ -91,6 +91,26 @@ TEST(SphereLocator, RealParameterizationEverywhere) {
   }
 }
 
+TEST(SphereLocator, DirectionsOnCubeEdgesAndCellBoundaries) {
+  // The cube map's own seams: cube edges, corners and every cell boundary line.
+  const TriangleMesh mesh = read_mesh(test::shared_mesh("genus0/spot_low.obj"));
+  const SphereResult param = spherical_parameterization(mesh);
+  const SphereLocator locator(param.sphere, mesh.triangles);
+  const int r = locator.cells_per_face_side();
+  std::vector<Vec3> queries;
+  for (int a = 0; a <= r; ++a) {
+    const double u = -1 + 2.0 * a / r;
+    for (double v : {-1.0, -0.5, 0.0, 1.0 / 3, 1.0}) {
+      for (double s : {1.0, -1.0}) {
+        queries.push_back(Vec3(s, u, v));
+        queries.push_back(Vec3(u, s, v));
+        queries.push_back(Vec3(v, u, s));
+      }
+    }
+  }
+  for (const Vec3& d : queries) expect_valid(locator, d, locator.locate(d));
+}
+
 TEST(SphereLocator, SliversAroundANearlyCoincidentVertex) {
   // One octahedron face split at a point 1e-9 from its corner: two slivers
   // and a triangle almost equal to the face.

@@ -5,8 +5,9 @@
 // these coordinates interpolate anything stored per vertex (positions,
 // normals, UVs, colours) at any point of the sphere.
 //
-// A cube map of cells, each listing the triangles whose cone may overlap it,
-// answers a query with a handful of sign tests (millions per second per core).
+// A cube map of cells, each listing the triangles whose cone overlaps it
+// (largest overlap first), answers a query with one or two sign tests:
+// millions of queries per second per core.
 #pragma once
 #include <Eigen/Core>
 #include <array>

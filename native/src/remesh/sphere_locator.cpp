@@ -41,6 +41,47 @@ int cell_coordinate(double u, int resolution) {
   return std::clamp(static_cast<int>(std::floor((u + 1) * 0.5 * resolution)), 0, resolution - 1);
 }
 
+// The gnomonic image on `face` of the part of the cone over triangle
+// (a, b, c) inside the face's (slightly widened) pyramid, as points (u, v, 1);
+// empty when the cone misses the face.
+void cone_image(const Vec3& a, const Vec3& b, const Vec3& c, const CubeFace& face, std::vector<Vec3>& image,
+                std::vector<Vec3>& scratch) {
+  image.clear();
+  if (std::max({a[face.k], b[face.k], c[face.k]}) * face.s <= 0) return;
+  std::vector<Vec3> polygon = {a, b, c};
+  const Vec3 axis = Vec3::Unit(face.k) * face.s * (1 + kSlack);
+  for (const Vec3& side : {Vec3(Vec3::Unit(face.i)), Vec3(Vec3::Unit(face.j))}) {
+    clip(polygon, axis - side, scratch);
+    clip(polygon, axis + side, scratch);
+  }
+  for (const Vec3& p : polygon) {
+    const double depth = p[face.k] * face.s;
+    if (!(depth > 0)) {  // only a cone reaching the origin gets here; take the whole face
+      image = {Vec3(-2, -2, 1), Vec3(2, -2, 1), Vec3(2, 2, 1), Vec3(-2, 2, 1)};
+      return;
+    }
+    image.emplace_back(p[face.i] / depth, p[face.j] / depth, 1);
+  }
+}
+
+// Area of a convex image polygon inside the box [x0, x1] x [y0, y1]; -1 when
+// they are disjoint (0 when they only touch).
+double overlap_area(const std::vector<Vec3>& image, double x0, double x1, double y0, double y1,
+                    std::vector<Vec3>& part, std::vector<Vec3>& scratch) {
+  part = image;
+  clip(part, Vec3(1, 0, -x0), scratch);
+  clip(part, Vec3(-1, 0, x1), scratch);
+  clip(part, Vec3(0, 1, -y0), scratch);
+  clip(part, Vec3(0, -1, y1), scratch);
+  if (part.empty()) return -1;
+  double twice_area = 0;
+  for (size_t q = 0; q < part.size(); ++q) {
+    const Vec3 &a = part[q], &b = part[(q + 1) % part.size()];
+    twice_area += a[0] * b[1] - a[1] * b[0];
+  }
+  return std::abs(twice_area) / 2;
+}
+
 // Signed distance-like score of d to the triangle: the smallest of its
 // (scaled) distances to the three edge planes; >= 0 inside.
 double containment_score(const Vec3& d, const Vec3 (&n)[3]) {
@@ -91,47 +132,25 @@ SphereLocator::SphereLocator(std::vector<Vec3> sphere, std::vector<Triangle> tri
     int triangle;
   };
   std::vector<Entry> entries;
-  std::vector<Vec3> polygon, image, cell_part, scratch;  // 2D points as (u, v, 1) so `clip` applies
+  std::vector<Vec3> image, part, scratch;
+  const double width = 2.0 / resolution_;
   for (int t : indexed) {
+    const Triangle& corners = triangles_[t];
     for (int f = 0; f < 6; ++f) {
-      const CubeFace face = cube_face(f);
-      polygon.clear();
-      for (int c : triangles_[t]) polygon.push_back(sphere_[c]);
-      if (std::max({polygon[0][face.k], polygon[1][face.k], polygon[2][face.k]}) * face.s <= 0) continue;
-      const Vec3 axis = Vec3::Unit(face.k) * face.s * (1 + kSlack);
-      for (const Vec3& side : {Vec3(Vec3::Unit(face.i)), Vec3(Vec3::Unit(face.j))}) {
-        clip(polygon, axis - side, scratch);
-        clip(polygon, axis + side, scratch);
-      }
-      if (polygon.empty()) continue;
-      image.clear();
-      for (const Vec3& p : polygon) {
-        const double depth = p[face.k] * face.s;
-        if (!(depth > 0)) {  // only a cone reaching the origin gets here; take the whole face
-          image = {Vec3(-2, -2, 1), Vec3(2, -2, 1), Vec3(2, 2, 1), Vec3(-2, 2, 1)};
-          break;
-        }
-        image.emplace_back(p[face.i] / depth, p[face.j] / depth, 1);
-      }
+      cone_image(sphere_[corners[0]], sphere_[corners[1]], sphere_[corners[2]], cube_face(f), image, scratch);
+      if (image.empty()) continue;
       double u0 = 1, u1 = -1, v0 = 1, v1 = -1;
-      for (const Vec3& p : image) u0 = std::min(u0, p[0]), u1 = std::max(u1, p[0]), v0 = std::min(v0, p[1]), v1 = std::max(v1, p[1]);
-      const double width = 2.0 / resolution_;
-      for (int cu = cell_coordinate(u0 - kSlack, resolution_); cu <= cell_coordinate(u1 + kSlack, resolution_); ++cu) {
-        for (int cv = cell_coordinate(v0 - kSlack, resolution_); cv <= cell_coordinate(v1 + kSlack, resolution_); ++cv) {
-          cell_part = image;
-          const double x0 = -1 + cu * width - kSlack, x1 = x0 + width + 2 * kSlack;
-          const double y0 = -1 + cv * width - kSlack, y1 = y0 + width + 2 * kSlack;
-          clip(cell_part, Vec3(1, 0, -x0), scratch);
-          clip(cell_part, Vec3(-1, 0, x1), scratch);
-          clip(cell_part, Vec3(0, 1, -y0), scratch);
-          clip(cell_part, Vec3(0, -1, y1), scratch);
-          if (cell_part.empty()) continue;
-          double area = 0;
-          for (size_t q = 0; q < cell_part.size(); ++q) {
-            const Vec3 &a = cell_part[q], &b = cell_part[(q + 1) % cell_part.size()];
-            area += a[0] * b[1] - a[1] * b[0];
-          }
-          entries.push_back({(f * resolution_ + cu) * resolution_ + cv, std::abs(area), t});
+      for (const Vec3& p : image) {
+        u0 = std::min(u0, p[0]), u1 = std::max(u1, p[0]);
+        v0 = std::min(v0, p[1]), v1 = std::max(v1, p[1]);
+      }
+      const int cu1 = cell_coordinate(u1 + kSlack, resolution_), cv1 = cell_coordinate(v1 + kSlack, resolution_);
+      for (int cu = cell_coordinate(u0 - kSlack, resolution_); cu <= cu1; ++cu) {
+        for (int cv = cell_coordinate(v0 - kSlack, resolution_); cv <= cv1; ++cv) {
+          const double x0 = -1 + cu * width - kSlack, y0 = -1 + cv * width - kSlack;
+          const double area = overlap_area(image, x0, x0 + width + 2 * kSlack, y0, y0 + width + 2 * kSlack, part,
+                                           scratch);
+          if (area >= 0) entries.push_back({(f * resolution_ + cu) * resolution_ + cv, area, t});
         }
       }
     }
