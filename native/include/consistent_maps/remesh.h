@@ -15,11 +15,12 @@ namespace cmaps {
 std::vector<Vec3> resample(const TriangleMesh& mesh, const std::vector<Vec3>& sphere,
                            const std::vector<Vec3>& samples, int threads = 2);
 
-// For each feature direction, moves the nearest sample exactly onto it (the
-// direction normalized) and returns that sample's index, so every remesh
-// carries feature k at the same vertex. Throws InvalidInput for a zero or
-// non-finite direction, or when two features would need the same sample
-// (the grid is too coarse for them).
+// `samples` are unit vectors. For each feature direction, moves the nearest
+// sample exactly onto it (the direction normalized) and returns that
+// sample's index, so every remesh carries feature k at the same vertex.
+// Throws InvalidInput for a zero or non-finite direction, or when two
+// features would need the same sample (the grid is too coarse for them);
+// `samples` is then unchanged.
 std::vector<int> snap_features(std::vector<Vec3>& samples, const std::vector<Vec3>& feature_directions);
 
 }  // namespace cmaps
