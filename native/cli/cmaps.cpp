@@ -1,5 +1,5 @@
 // The `cmaps` command-line tool: check a mesh, or compute its spherical
-// parameterization. Every failure ends as exit code 1 (2 for usage errors)
+// parameterization, unconstrained or with feature vertices at given points. Every failure ends as exit code 1 (2 for usage errors)
 // with one line "cmaps: error: ..." on stderr, and with --json also as one
 // JSON object carrying "error" on stdout.
 #include <unistd.h>
@@ -11,16 +11,19 @@
 #include <exception>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <new>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "consistent_maps/constrained_parameterization.h"
 #include "consistent_maps/errors.h"
 #include "consistent_maps/mesh_check.h"
 #include "consistent_maps/mesh_io.h"
 #include "consistent_maps/spherical_parameterization.h"
 #include "consistent_maps/version.h"
+#include "json_reader.h"
 #include "json_writer.h"
 
 namespace {
@@ -30,6 +33,8 @@ using cmaps::JsonObject;
 const char* const kUsage = R"(usage:
   cmaps check IN [--json]
   cmaps sphere IN -o OUT [--seed N] [--effort 0|1|2] [--threads N] [--json]
+  cmaps constrained IN --features FILE [--targets FILE] -o OUT [--refined-mesh PATH]
+                    [--seed N] [--effort 0|1|2] [--threads N] [--json]
   cmaps --help | --version
 
 commands:
@@ -39,9 +44,21 @@ commands:
   sphere   compute a stretch-minimizing bijective map of IN onto the unit
            sphere and write OUT (.obj .ply .off): the input triangles and vertex
            order, with each position replaced by its unit vector.
+  constrained
+           like `sphere`, with every feature vertex exactly at its target
+           point. OUT holds the input vertices first, in input order, then
+           any Steiner vertices the map needed, with the faces of the refined
+           triangulation the map is piecewise linear on.
 
 options:
-  -o, --output OUT   output file of `sphere`
+  -o, --output OUT   output file of `sphere` and `constrained`
+  --features FILE    JSON object {"name": vertex_index, ...} (0-based, at least 3)
+  --targets FILE     JSON object {"name": [x, y, z], ...} with the same names
+                     (normalized; distinct); without it the targets are where
+                     the unconstrained map puts the features
+  --refined-mesh PATH
+                     also write OUT's mesh with 3D positions (Steiner vertices
+                     on the input surface)
   --seed N           random seed; equal seeds give equal results (default 1)
   --effort E         0 = fast preview, 1 = default, 2 = best quality
   --threads N        worker threads (default 2)
@@ -58,6 +75,7 @@ struct UsageError : std::runtime_error {
 
 struct Arguments {
   std::string command, input, output;
+  std::string features, targets, refined_mesh;  // constrained only
   std::uint64_t seed = 1;
   int effort = 1;
   int threads = 2;
@@ -88,6 +106,9 @@ Arguments parse(const std::vector<std::string>& args) {
     };
     if (arg == "--json") a.json = true;
     else if (arg == "-o" || arg == "--output") a.output = value();
+    else if (arg == "--features") a.features = value();
+    else if (arg == "--targets") a.targets = value();
+    else if (arg == "--refined-mesh") a.refined_mesh = value();
     else if (arg == "--seed") a.seed = std::uint64_t(parse_integer(arg, value(), 0, 1LL << 62));
     else if (arg == "--effort") a.effort = int(parse_integer(arg, value(), 0, 2));
     else if (arg == "--threads") a.threads = int(parse_integer(arg, value(), 1, 256));
@@ -97,11 +118,20 @@ Arguments parse(const std::vector<std::string>& args) {
     else throw UsageError("unexpected argument '" + arg + "' (see cmaps --help)");
   }
   if (a.command.empty()) throw UsageError("missing command (see cmaps --help)");
-  if (a.command != "check" && a.command != "sphere")
+  if (a.command != "check" && a.command != "sphere" && a.command != "constrained")
     throw UsageError("unknown command '" + a.command + "' (see cmaps --help)");
   if (a.input.empty()) throw UsageError("missing input mesh (see cmaps --help)");
-  if (a.command == "sphere" && a.output.empty()) throw UsageError("sphere needs -o OUT (see cmaps --help)");
+  if (a.command != "check" && a.output.empty())
+    throw UsageError(a.command + " needs -o OUT (see cmaps --help)");
   if (a.command == "check" && !a.output.empty()) throw UsageError("check takes no -o");
+  if (a.command == "constrained") {
+    if (a.features.empty()) throw UsageError("constrained needs --features FILE (see cmaps --help)");
+  } else {
+    for (const auto& [option, given] : {std::pair<const char*, const std::string&>{"--features", a.features},
+                                        {"--targets", a.targets},
+                                        {"--refined-mesh", a.refined_mesh}})
+      if (!given.empty()) throw UsageError(a.command + " takes no " + option + " (only constrained does)");
+  }
   return a;
 }
 
@@ -134,6 +164,12 @@ struct Outcome {
   std::optional<double> efficiency;
   std::optional<int> flipped;
   std::string summary;  // human-readable result, printed on success
+  // `constrained` only: its --json keys, null until known.
+  bool constrained = false;
+  std::optional<bool> bijective;
+  std::optional<int> degenerate, steiner_vertices, auxiliary_vertices, retraced_paths, layout_flips;
+  std::optional<double> steiner_fraction, max_constraint_error, seconds_paths, seconds_simplify, seconds_optimize;
+  std::optional<JsonObject> targets;
 };
 
 void run_check(const Arguments& args, Outcome& out) {
@@ -156,15 +192,33 @@ cmaps::ProgressCallback terminal_progress(bool enabled) {
   };
 }
 
-void run_sphere(const Arguments& args, Outcome& out) {
-  // Reject an unusable output path before a long computation, not after it.
-  std::string ext = std::filesystem::path(args.output).extension().string();
+// Rejects an unusable output path before a long computation, not after it.
+void check_output_path(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   if (ext != ".obj" && ext != ".ply" && ext != ".off")
-    throw UsageError("output '" + args.output + "' must end in .obj, .ply or .off");
-  const std::filesystem::path parent = std::filesystem::path(args.output).parent_path();
+    throw UsageError("output '" + path + "' must end in .obj, .ply or .off");
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
   if (!parent.empty() && !std::filesystem::is_directory(parent))
-    throw cmaps::IoError("cannot write '" + args.output + "': directory '" + parent.string() + "' does not exist");
+    throw cmaps::IoError("cannot write '" + path + "': directory '" + parent.string() + "' does not exist");
+}
+
+// Runs `compute(progress)` with progress on an interactive terminal, and
+// clears the progress line however it ends.
+template <class Compute>
+auto with_terminal_progress(bool show, Compute&& compute) {
+  try {
+    auto result = compute(terminal_progress(show));
+    if (show) std::fputs("\r\033[K", stderr);
+    return result;
+  } catch (...) {
+    if (show) std::fputs("\r\033[K", stderr);
+    throw;
+  }
+}
+
+void run_sphere(const Arguments& args, Outcome& out) {
+  check_output_path(args.output);
 
   cmaps::TriangleMesh mesh = cmaps::read_mesh(args.input);
   out.faces = int(mesh.triangles.size());
@@ -174,15 +228,10 @@ void run_sphere(const Arguments& args, Outcome& out) {
   options.seed = args.seed;
   options.effort = args.effort;
   options.threads = args.threads;
-  const bool show_progress = !args.json && isatty(STDERR_FILENO);
-  cmaps::SphereResult result;
-  try {
-    result = cmaps::spherical_parameterization(mesh, options, terminal_progress(show_progress));
-  } catch (...) {
-    if (show_progress) std::fputs("\r\033[K", stderr);
-    throw;
-  }
-  if (show_progress) std::fputs("\r\033[K", stderr);
+  const cmaps::SphereResult result =
+      with_terminal_progress(!args.json && isatty(STDERR_FILENO), [&](const cmaps::ProgressCallback& progress) {
+        return cmaps::spherical_parameterization(mesh, options, progress);
+      });
 
   if (result.sphere.size() != mesh.vertices.size())
     throw cmaps::Error("internal error: the parameterization returned " + std::to_string(result.sphere.size()) +
@@ -215,6 +264,151 @@ void run_sphere(const Arguments& args, Outcome& out) {
   out.summary = "wrote " + args.output + ": " + line;
 }
 
+std::string in_quotes(const std::string& name) { return JsonObject::quote(name); }
+
+// Features (in the features file's order) with their targets, matched by name
+// and checked against the mesh, each problem named by its feature.
+struct Constraints {
+  std::vector<std::string> names;
+  std::vector<int> vertices;
+  std::vector<cmaps::Vec3> targets;  // empty: automatic
+};
+
+Constraints read_constraints(const Arguments& args, int vertex_count) {
+  Constraints c;
+  const auto features = cmaps::read_feature_file(args.features);
+  if (features.size() < 3)
+    throw cmaps::InvalidInput(args.features + ": need at least 3 features, got " + std::to_string(features.size()));
+  std::map<int, std::string> by_vertex;
+  for (const auto& [name, vertex] : features) {
+    if (vertex >= vertex_count)
+      throw cmaps::InvalidInput(args.features + ": feature " + in_quotes(name) + ": vertex " + std::to_string(vertex) +
+                                " is out of range (the mesh has " + std::to_string(vertex_count) + " vertices)");
+    const auto [it, inserted] = by_vertex.emplace(vertex, name);
+    if (!inserted)
+      throw cmaps::InvalidInput(args.features + ": features " + in_quotes(it->second) + " and " + in_quotes(name) + " are both vertex " +
+                                std::to_string(vertex));
+    c.names.push_back(name);
+    c.vertices.push_back(vertex);
+  }
+  if (args.targets.empty()) return c;
+
+  const auto targets = cmaps::read_target_file(args.targets);
+  std::map<std::string, cmaps::Vec3> by_name(targets.begin(), targets.end());
+  for (const auto& [name, target] : targets) {
+    if (std::find(c.names.begin(), c.names.end(), name) == c.names.end())
+      throw cmaps::InvalidInput("target " + in_quotes(name) + " in " + args.targets + " names no feature in " +
+                                args.features);
+  }
+  for (const std::string& name : c.names) {
+    const auto it = by_name.find(name);
+    if (it == by_name.end())
+      throw cmaps::InvalidInput("feature " + in_quotes(name) + " has no target in " + args.targets);
+    const cmaps::Vec3& p = it->second;
+    if (!p.allFinite()) throw cmaps::InvalidInput(args.targets + ": target " + in_quotes(name) + " is not finite");
+    if (!(p.norm() > 0)) throw cmaps::InvalidInput(args.targets + ": target " + in_quotes(name) + " is the zero vector");
+    c.targets.push_back(p);
+  }
+  // Same tolerance as the library, which would report indices instead of names.
+  for (std::size_t i = 0; i < c.targets.size(); ++i)
+    for (std::size_t j = i + 1; j < c.targets.size(); ++j)
+      if ((c.targets[i].normalized() - c.targets[j].normalized()).norm() < 1e-9)
+        throw cmaps::InvalidInput(args.targets + ": targets " + in_quotes(c.names[i]) + " and " + in_quotes(c.names[j]) +
+                                  " are equal (after normalization)");
+  return c;
+}
+
+void run_constrained(const Arguments& args, Outcome& out) {
+  out.constrained = true;
+  check_output_path(args.output);
+  if (!args.refined_mesh.empty()) check_output_path(args.refined_mesh);
+
+  cmaps::TriangleMesh mesh = cmaps::read_mesh(args.input);
+  out.faces = int(mesh.triangles.size());
+  out.json.add("vertices", int(mesh.vertices.size()));
+  const int n = int(mesh.vertices.size());
+  const Constraints constraints = read_constraints(args, n);
+  out.json.add("features", int(constraints.vertices.size()));
+
+  cmaps::SphereOptions options;
+  options.seed = args.seed;
+  options.effort = args.effort;
+  options.threads = args.threads;
+  const cmaps::ConstrainedResult result =
+      with_terminal_progress(!args.json && isatty(STDERR_FILENO), [&](const cmaps::ProgressCallback& progress) {
+        return cmaps::constrained_spherical_parameterization(mesh, constraints.vertices, constraints.targets, options,
+                                                             progress);
+      });
+
+  const std::size_t total = mesh.vertices.size() + result.steiner.size();
+  if (result.sphere.size() != mesh.vertices.size() || result.targets.size() != constraints.vertices.size())
+    throw cmaps::Error("internal error: the constrained parameterization returned " +
+                       std::to_string(result.sphere.size()) + " positions for " + std::to_string(n) + " vertices");
+  for (const cmaps::Triangle& t : result.triangles)
+    for (int v : t)
+      if (v < 0 || std::size_t(v) >= total)
+        throw cmaps::Error("internal error: the refined triangulation refers to vertex " + std::to_string(v));
+
+  // The sphere mesh: input vertices in input order, then the Steiner vertices.
+  cmaps::TriangleMesh sphere{result.sphere, result.triangles};
+  cmaps::TriangleMesh refined{mesh.vertices, result.triangles};
+  for (const cmaps::SteinerVertex& s : result.steiner) {
+    sphere.vertices.push_back(s.sphere);
+    cmaps::Vec3 x = cmaps::Vec3::Zero();
+    for (int k = 0; k < 3; ++k)
+      if (s.vertices[k] >= 0) x += s.weights[k] * mesh.vertices[s.vertices[k]];
+    refined.vertices.push_back(x);
+  }
+  for (const cmaps::Vec3& p : sphere.vertices) {
+    if (!p.allFinite()) throw cmaps::Error("internal error: the parameterization produced a non-finite position");
+  }
+
+  const cmaps::SphericalMapReport& r = result.report;
+  out.efficiency = r.efficiency;
+  out.flipped = r.flipped;
+  out.degenerate = r.degenerate;
+  out.bijective = r.bijective();
+  out.steiner_vertices = int(result.steiner.size());
+  out.steiner_fraction = double(result.steiner.size()) / double(n);
+  out.auxiliary_vertices = result.auxiliary_vertices;
+  out.retraced_paths = result.retraced_paths;
+  out.layout_flips = result.layout_flips;
+  out.max_constraint_error = result.max_constraint_error;
+  out.seconds_paths = result.seconds_paths;
+  out.seconds_simplify = result.seconds_simplify;
+  out.seconds_optimize = result.seconds_optimize;
+  JsonObject targets;
+  for (std::size_t i = 0; i < constraints.names.size(); ++i) {
+    const cmaps::Vec3& t = result.targets[i];
+    targets.add(constraints.names[i], std::vector<double>{t.x(), t.y(), t.z()});
+  }
+  out.targets = targets;
+  out.json.add("output_vertices", int(total))
+      .add("output_faces", int(result.triangles.size()))
+      .add("l2_stretch", r.l2_stretch)
+      .add("linf_stretch", r.linf_stretch)
+      .add("spherical_area_sum", r.spherical_area_sum)
+      .add("surface_area", r.surface_area)
+      .add("automatic_targets", constraints.targets.empty())
+      .add("seed", static_cast<unsigned long long>(args.seed))
+      .add("effort", args.effort)
+      .add("threads", args.threads)
+      .add("output", args.output);
+  if (args.refined_mesh.empty()) out.json.null("refined_mesh");
+  else out.json.add("refined_mesh", args.refined_mesh);
+
+  cmaps::write_mesh(args.output, sphere);
+  if (!args.refined_mesh.empty()) cmaps::write_mesh(args.refined_mesh, refined);
+
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "%zu features on their targets (max error %.3g), %zu Steiner vertices, stretch efficiency %.4f, "
+                "%d flipped, %s",
+                constraints.vertices.size(), result.max_constraint_error, result.steiner.size(), r.efficiency,
+                r.flipped, r.bijective() ? "bijective" : "NOT bijective");
+  out.summary = "wrote " + args.output + (args.refined_mesh.empty() ? "" : " and " + args.refined_mesh) + ": " + line;
+}
+
 std::string one_line(std::string message) {
   std::replace(message.begin(), message.end(), '\n', ' ');
   std::replace(message.begin(), message.end(), '\r', ' ');
@@ -231,7 +425,8 @@ int run(const std::vector<std::string>& argv) {
     const Arguments args = parse(argv);
     out.json.add("command", args.command).add("input", args.input);
     if (args.command == "check") run_check(args, out);
-    else run_sphere(args, out);
+    else if (args.command == "sphere") run_sphere(args, out);
+    else run_constrained(args, out);
   } catch (const UsageError& e) {
     error = e.what(), code = 2;
   } catch (const std::bad_alloc&) {
@@ -248,6 +443,20 @@ int run(const std::vector<std::string>& argv) {
         .add("seconds", seconds_since(start))
         .add("stretch_efficiency", out.efficiency)
         .add("flipped", out.flipped);
+    if (out.constrained) {
+      out.json.add("degenerate", out.degenerate)
+          .add("bijective", out.bijective)
+          .add("steiner_vertices", out.steiner_vertices)
+          .add("steiner_fraction", out.steiner_fraction)
+          .add("auxiliary_vertices", out.auxiliary_vertices)
+          .add("retraced_paths", out.retraced_paths)
+          .add("layout_flips", out.layout_flips)
+          .add("max_constraint_error", out.max_constraint_error)
+          .add("targets", out.targets)
+          .add("seconds_paths", out.seconds_paths)
+          .add("seconds_simplify", out.seconds_simplify)
+          .add("seconds_optimize", out.seconds_optimize);
+    }
     if (code != 0) out.json.add("error", error);
     else out.json.null("error");
     std::cout << out.json.str() << std::endl;

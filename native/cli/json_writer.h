@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace cmaps {
 
@@ -16,13 +17,15 @@ class JsonObject {
   JsonObject& add(const std::string& key, bool value) { return raw(key, value ? "true" : "false"); }
   JsonObject& add(const std::string& key, int value) { return raw(key, std::to_string(value)); }
   JsonObject& add(const std::string& key, unsigned long long value) { return raw(key, std::to_string(value)); }
-  // JSON has no NaN or infinity; they become null.
-  JsonObject& add(const std::string& key, double value) {
-    if (!std::isfinite(value)) return null(key);
-    char text[32];
-    const auto end = std::to_chars(text, text + sizeof text, value).ptr;  // shortest exact form
-    return raw(key, std::string(text, end));
+  JsonObject& add(const std::string& key, double value) { return raw(key, number(value)); }
+  // An array of numbers, e.g. a point [x, y, z].
+  JsonObject& add(const std::string& key, const std::vector<double>& values) {
+    std::string array = "[";
+    for (std::size_t i = 0; i < values.size(); ++i) array += (i ? ", " : "") + number(values[i]);
+    return raw(key, array + "]");
   }
+  // A nested object.
+  JsonObject& add(const std::string& key, const JsonObject& value) { return raw(key, value.str()); }
   template <class T>
   JsonObject& add(const std::string& key, const std::optional<T>& value) {
     return value ? add(key, *value) : null(key);
@@ -30,6 +33,14 @@ class JsonObject {
   JsonObject& null(const std::string& key) { return raw(key, "null"); }
 
   std::string str() const { return "{" + body_ + "}"; }
+
+  // Shortest exact form; JSON has no NaN or infinity, so they become null.
+  static std::string number(double value) {
+    if (!std::isfinite(value)) return "null";
+    char text[32];
+    const auto end = std::to_chars(text, text + sizeof text, value).ptr;
+    return std::string(text, end);
+  }
 
   static std::string quote(const std::string& s) {
     std::string out = "\"";
