@@ -13,6 +13,7 @@
 #include <optional>
 #include <string>
 
+#include "consistent_maps/constrained_parameterization.h"
 #include "consistent_maps/errors.h"
 #include "consistent_maps/mesh_check.h"
 #include "consistent_maps/mesh_io.h"
@@ -43,12 +44,26 @@ py::array as_array(const py::handle& data, const char* name) {
   return array;
 }
 
-void require_n_by_3(const py::array& array, const char* name) {
-  if (array.ndim() == 2 && array.shape(1) == 3) return;
+std::string shape_of(const py::array& array) {
   std::string shape;
   for (py::ssize_t d = 0; d < array.ndim(); ++d) shape += (d ? ", " : "") + std::to_string(array.shape(d));
   if (array.ndim() == 1) shape += ",";
-  raise(PyExc_ValueError, std::string(name) + " must have shape (n, 3), got (" + shape + ")");
+  return "(" + shape + ")";
+}
+
+void require_n_by_3(const py::array& array, const char* name) {
+  if (array.ndim() == 2 && array.shape(1) == 3) return;
+  raise(PyExc_ValueError, std::string(name) + " must have shape (n, 3), got " + shape_of(array));
+}
+
+// Any integer array-like as C-contiguous int64 (bools and floats are refused).
+py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> to_integers(const py::handle& data,
+                                                                                 const char* name) {
+  py::array array = as_array(data, name);
+  const char kind = array.dtype().kind();
+  if (kind != 'i' && kind != 'u')
+    raise(PyExc_TypeError, std::string(name) + " must hold integers, got dtype " + std::string(py::str(array.dtype())));
+  return py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(array);
 }
 
 std::vector<cmaps::Vec3> to_points(const py::handle& data, const char* name) {
@@ -68,12 +83,8 @@ std::vector<cmaps::Vec3> to_points(const py::handle& data, const char* name) {
 cmaps::TriangleMesh to_mesh(const py::handle& vertices, const py::handle& triangles) {
   cmaps::TriangleMesh mesh;
   mesh.vertices = to_points(vertices, "vertices");
-  py::array array = as_array(triangles, "triangles");
-  const char kind = array.dtype().kind();
-  if (kind != 'i' && kind != 'u')
-    raise(PyExc_TypeError, "triangles must hold integers, got dtype " + std::string(py::str(array.dtype())));
-  require_n_by_3(array, "triangles");
-  const auto indices = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(array);
+  const auto indices = to_integers(triangles, "triangles");
+  require_n_by_3(indices, "triangles");
   const auto t = indices.unchecked<2>();
   const std::int64_t n = std::int64_t(mesh.vertices.size());
   mesh.triangles.resize(t.shape(0));
@@ -94,6 +105,14 @@ py::array_t<double> to_numpy(const std::vector<cmaps::Vec3>& points) {
   auto a = array.mutable_unchecked<2>();
   for (size_t i = 0; i < points.size(); ++i)
     for (int k = 0; k < 3; ++k) a(i, k) = points[i][k];
+  return array;
+}
+
+py::array_t<std::int32_t> to_numpy(const std::vector<cmaps::Triangle>& triangles) {
+  py::array_t<std::int32_t> array({py::ssize_t(triangles.size()), py::ssize_t(3)});
+  auto t = array.mutable_unchecked<2>();
+  for (size_t f = 0; f < triangles.size(); ++f)
+    for (int k = 0; k < 3; ++k) t(f, k) = triangles[f][k];
   return array;
 }
 
@@ -137,11 +156,7 @@ py::tuple read_mesh(const std::filesystem::path& path) {
     py::gil_scoped_release release;
     mesh = cmaps::read_mesh(path.string());
   }
-  py::array_t<std::int32_t> triangles({py::ssize_t(mesh.triangles.size()), py::ssize_t(3)});
-  auto t = triangles.mutable_unchecked<2>();
-  for (size_t f = 0; f < mesh.triangles.size(); ++f)
-    for (int k = 0; k < 3; ++k) t(f, k) = mesh.triangles[f][k];
-  return py::make_tuple(to_numpy(mesh.vertices), triangles);
+  return py::make_tuple(to_numpy(mesh.vertices), to_numpy(mesh.triangles));
 }
 
 py::dict check_mesh(const py::handle& vertices, const py::handle& triangles) {
@@ -194,17 +209,23 @@ class PythonProgress {
   std::optional<py::error_already_set> error_;
 };
 
-py::tuple spherical_parameterization(const py::handle& vertices, const py::handle& triangles, std::uint64_t seed,
-                                     int effort, int threads, const py::object& progress) {
+// Checks the keyword arguments shared by the parameterizations.
+cmaps::SphereOptions sphere_options(std::uint64_t seed, int effort, int threads, const py::object& progress) {
   if (effort < 0 || effort > 2) raise(PyExc_ValueError, "effort must be 0, 1 or 2, got " + std::to_string(effort));
   if (threads < 1) raise(PyExc_ValueError, "threads must be at least 1, got " + std::to_string(threads));
   if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
     raise(PyExc_TypeError, "progress must be a callable (fraction, stage) -> bool, or None");
-  const cmaps::TriangleMesh mesh = to_mesh(vertices, triangles);
   cmaps::SphereOptions options;
   options.seed = seed;
   options.effort = effort;
   options.threads = threads;
+  return options;
+}
+
+py::tuple spherical_parameterization(const py::handle& vertices, const py::handle& triangles, std::uint64_t seed,
+                                     int effort, int threads, const py::object& progress) {
+  const cmaps::SphereOptions options = sphere_options(seed, effort, threads, progress);
+  const cmaps::TriangleMesh mesh = to_mesh(vertices, triangles);
   PythonProgress forward(progress);
   const cmaps::ProgressCallback callback = [&forward](double fraction, const std::string& stage) {
     return forward(fraction, stage);
@@ -230,6 +251,87 @@ py::tuple spherical_parameterization(const py::handle& vertices, const py::handl
   stats["faces"] = mesh.triangles.size();
   stats["vertices"] = mesh.vertices.size();
   return py::make_tuple(to_numpy(result.sphere), stats);
+}
+
+// Feature vertex indices: a (k,) integer array-like, each a vertex of the mesh.
+std::vector<int> to_features(const py::handle& data, std::size_t vertex_count) {
+  const auto indices = to_integers(data, "features");
+  if (indices.ndim() != 1) raise(PyExc_ValueError, "features must have shape (k,), got " + shape_of(indices));
+  const auto f = indices.unchecked<1>();
+  std::vector<int> features(f.shape(0));
+  for (py::ssize_t i = 0; i < f.shape(0); ++i) {
+    if (f(i) < 0 || f(i) >= std::int64_t(vertex_count))
+      raise(invalid_mesh_error, "feature " + std::to_string(i) + " is vertex " + std::to_string(f(i)) +
+                                    " but the mesh has " + std::to_string(vertex_count) + " vertices");
+    features[i] = int(f(i));
+  }
+  return features;
+}
+
+py::tuple constrained_spherical_parameterization(const py::handle& vertices, const py::handle& triangles,
+                                                 const py::handle& features_data, const py::object& targets_data,
+                                                 std::uint64_t seed, int effort, int threads,
+                                                 const py::object& progress) {
+  const cmaps::SphereOptions options = sphere_options(seed, effort, threads, progress);
+  const cmaps::TriangleMesh mesh = to_mesh(vertices, triangles);
+  const std::vector<int> features = to_features(features_data, mesh.vertices.size());
+  std::vector<cmaps::Vec3> targets;
+  if (!targets_data.is_none()) {
+    targets = to_points(targets_data, "targets");
+    if (targets.size() != features.size())
+      raise(PyExc_ValueError, "targets has " + std::to_string(targets.size()) + " rows for " +
+                                  std::to_string(features.size()) + " features");
+  }
+  PythonProgress forward(progress);
+  const cmaps::ProgressCallback callback = [&forward](double fraction, const std::string& stage) {
+    return forward(fraction, stage);
+  };
+
+  cmaps::ConstrainedResult result;
+  double seconds = 0;
+  try {
+    py::gil_scoped_release release;
+    const auto start = std::chrono::steady_clock::now();
+    result = cmaps::constrained_spherical_parameterization(mesh, features, targets, options, callback);
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  } catch (const cmaps::Cancelled&) {
+    forward.rethrow_python_error();
+    throw;
+  }
+
+  py::dict stats;
+  add_map_report(stats, result.report);
+  stats["seconds"] = seconds;
+  stats["seconds_paths"] = result.seconds_paths;
+  stats["seconds_simplify"] = result.seconds_simplify;
+  stats["seconds_optimize"] = result.seconds_optimize;
+  stats["faces"] = mesh.triangles.size();
+  stats["vertices"] = mesh.vertices.size();
+  stats["refined_faces"] = result.triangles.size();
+  stats["steiner_vertices"] = result.steiner.size();
+  stats["steiner_fraction"] = double(result.steiner.size()) / double(mesh.vertices.size());
+  stats["auxiliary_vertices"] = result.auxiliary_vertices;
+  stats["retraced_paths"] = result.retraced_paths;
+  stats["layout_flips"] = result.layout_flips;
+  stats["max_constraint_error"] = result.max_constraint_error;
+
+  const py::ssize_t s = py::ssize_t(result.steiner.size());
+  py::array_t<std::int32_t> steiner_vertices({s, py::ssize_t(3)});
+  py::array_t<double> steiner_weights({s, py::ssize_t(3)});
+  std::vector<cmaps::Vec3> steiner_sphere(result.steiner.size());
+  auto sv = steiner_vertices.mutable_unchecked<2>();
+  auto sw = steiner_weights.mutable_unchecked<2>();
+  for (py::ssize_t i = 0; i < s; ++i) {
+    for (int k = 0; k < 3; ++k) sv(i, k) = result.steiner[i].vertices[k], sw(i, k) = result.steiner[i].weights[k];
+    steiner_sphere[i] = result.steiner[i].sphere;
+  }
+  py::dict extras;
+  extras["steiner_vertices"] = steiner_vertices;
+  extras["steiner_weights"] = steiner_weights;
+  extras["steiner_sphere"] = to_numpy(steiner_sphere);
+  extras["triangles"] = to_numpy(result.triangles);
+  extras["targets"] = to_numpy(result.targets);
+  return py::make_tuple(to_numpy(result.sphere), stats, extras);
 }
 
 py::dict measure_spherical_map(const py::handle& vertices, const py::handle& triangles, const py::handle& sphere) {
@@ -293,6 +395,18 @@ PYBIND11_MODULE(_native, m) {
         "Stretch-minimizing bijective map of a closed genus-0 mesh onto the unit sphere.\n"
         "Returns (sphere (n, 3) float64, stats dict). progress(fraction, stage) is called from the\n"
         "computation; returning False stops it with Cancelled. Raises InvalidMeshError for unsupported input.");
+  m.def("constrained_spherical_parameterization", &constrained_spherical_parameterization, py::arg("vertices"),
+        py::arg("triangles"), py::arg("features"), py::arg("targets") = py::none(), py::kw_only(),
+        py::arg("seed") = 1, py::arg("effort") = 1, py::arg("threads") = 2, py::arg("progress") = py::none(),
+        "Like spherical_parameterization, with every feature vertex exactly at its target.\n"
+        "features: (k,) distinct vertex indices, k >= 3. targets: (k, 3) distinct directions (normalized),\n"
+        "or None to take them from the unconstrained map. Returns (sphere (n, 3) float64, stats dict,\n"
+        "extras dict). The map is piecewise linear on a refinement of the input: extras['triangles']\n"
+        "(m', 3) int32 indexes the n input vertices followed by s Steiner vertices, vertex n + i lying on\n"
+        "the input surface at sum_j extras['steiner_weights'][i, j] * vertices[extras['steiner_vertices'][i, j]]\n"
+        "(unused slots are -1 with weight 0) and mapped to extras['steiner_sphere'][i]; extras['targets'] is\n"
+        "(k, 3), the targets used. Raises InvalidMeshError for unsupported input or bad features/targets,\n"
+        "Cancelled when progress returns False.");
   m.def("measure_spherical_map", &measure_spherical_map, py::arg("vertices"), py::arg("triangles"),
         py::arg("sphere"), "Stretch and bijectivity measures of a map of the mesh onto the unit sphere.");
 }
