@@ -255,7 +255,9 @@ py::tuple spherical_parameterization(const py::handle& vertices, const py::handl
 
 // Feature vertex indices: a (k,) integer array-like, each a vertex of the mesh.
 std::vector<int> to_features(const py::handle& data, std::size_t vertex_count) {
-  const auto indices = to_integers(data, "features");
+  const py::array array = as_array(data, "features");
+  if (array.ndim() == 1 && array.size() == 0) return {};  // [] is float64 to numpy; the library names the problem
+  const auto indices = to_integers(array, "features");
   if (indices.ndim() != 1) raise(PyExc_ValueError, "features must have shape (k,), got " + shape_of(indices));
   const auto f = indices.unchecked<1>();
   std::vector<int> features(f.shape(0));

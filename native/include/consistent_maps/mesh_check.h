@@ -10,7 +10,7 @@ struct MeshReport {
   int vertices = 0;             // entries in the vertex array
   int referenced_vertices = 0;  // vertices used by at least one triangle
   int faces = 0;
-  int components = 0;  // edge-connected components of the triangles
+  int components = 0;  // components of the triangles joined through shared vertices
   int boundary_loops = 0;
   int euler_characteristic = 0;  // V - E + F over referenced vertices
   int genus = -1;                // -1 when undefined (non-manifold or several components)
@@ -27,6 +27,9 @@ struct MeshReport {
 };
 
 MeshReport check_mesh(const TriangleMesh& mesh);
+
+// Volume enclosed by a closed mesh: negative when its triangles face inwards.
+double signed_volume(const TriangleMesh& mesh);
 
 // One line describing the report (for CLI output and error messages).
 std::string summarize(const MeshReport& report);

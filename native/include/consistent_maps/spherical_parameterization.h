@@ -34,4 +34,12 @@ struct SphereResult {
 SphereResult spherical_parameterization(const TriangleMesh& mesh, const SphereOptions& options = {},
                                         const ProgressCallback& progress = {});
 
+// One connectivity carrying several shapes (vertex i of every shape
+// corresponds; thesis 3.2, step 5): the quadric error and the stretch energy
+// are summed over the shapes, each scaled to the same area, so the map suits
+// all of them. The report measures the first shape.
+SphereResult spherical_parameterization(const std::vector<Triangle>& triangles,
+                                        const std::vector<std::vector<Vec3>>& shapes,
+                                        const SphereOptions& options = {}, const ProgressCallback& progress = {});
+
 }  // namespace cmaps

@@ -272,4 +272,11 @@ void require_sphere_topology(const TriangleMesh& mesh) {
                        "); every vertex must belong to a triangle to get a position on the sphere");
 }
 
+double signed_volume(const TriangleMesh& mesh) {
+  double volume = 0;
+  for (const Triangle& t : mesh.triangles)
+    volume += mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
+  return volume / 6;
+}
+
 }  // namespace cmaps

@@ -44,12 +44,6 @@ void validate_features(const TriangleMesh& mesh, const std::vector<int>& feature
         throw InvalidInput("targets " + std::to_string(i) + " and " + std::to_string(j) + " are equal");
 }
 
-double signed_volume(const std::vector<Vec3>& x, const std::vector<Triangle>& triangles) {
-  double volume = 0;
-  for (const Triangle& t : triangles) volume += x[t[0]].dot(x[t[1]].cross(x[t[2]]));
-  return volume / 6;
-}
-
 // The vertex farthest from every chosen one: where a free base vertex goes.
 int farthest_vertex(const std::vector<Vec3>& x, const std::vector<int>& chosen) {
   int best = -1;
@@ -89,7 +83,7 @@ ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mes
   // mesh and on the sphere turn the same way.
   std::vector<Vec3> positions = normalized_positions(mesh.vertices, mesh.triangles);
   std::vector<Triangle> triangles = mesh.triangles;
-  const bool inverted = signed_volume(positions, triangles) < 0;
+  const bool inverted = signed_volume({positions, triangles}) < 0;
   if (inverted)
     for (Triangle& t : triangles) std::swap(t[1], t[2]);
 

@@ -42,25 +42,40 @@ void place_base(const ProgressiveMesh& pm, std::vector<Vec3>& sphere, std::uint6
 
 SphereResult spherical_parameterization(const TriangleMesh& mesh, const SphereOptions& options,
                                         const ProgressCallback& progress) {
-  require_sphere_topology(mesh);
+  return spherical_parameterization(mesh.triangles, {mesh.vertices}, options, progress);
+}
+
+SphereResult spherical_parameterization(const std::vector<Triangle>& triangles,
+                                        const std::vector<std::vector<Vec3>>& shapes, const SphereOptions& options,
+                                        const ProgressCallback& progress) {
+  if (shapes.empty()) throw InvalidInput("no shape to parameterize");
+  for (const auto& shape : shapes) {
+    if (shape.size() != shapes.front().size()) throw InvalidInput("shapes differ in vertex count");
+    require_sphere_topology({shape, triangles});
+  }
   if (options.effort < 0 || options.effort > 2) throw InvalidInput("effort must be 0, 1 or 2");
   const auto start = std::chrono::steady_clock::now();
   SphereResult result;
 
-  const std::vector<Vec3> positions = normalized_positions(mesh.vertices, mesh.triangles);
+  std::vector<std::vector<Vec3>> positions;
+  for (const auto& shape : shapes) positions.push_back(normalized_positions(shape, triangles));
+  SimplificationOptions simplification;
+  simplification.extra_geometries.assign(positions.begin() + 1, positions.end());
   ProgressCallback simplify_progress;
   if (progress) simplify_progress = [&](double f, const std::string& stage) { return progress(0.1 * f, stage); };
-  const ProgressiveMesh pm = build_progressive_mesh({positions, mesh.triangles}, {}, simplify_progress);
+  const ProgressiveMesh pm = build_progressive_mesh({positions.front(), triangles}, simplification, simplify_progress);
   result.seconds_simplify = seconds_since(start);
 
   const auto optimize_start = std::chrono::steady_clock::now();
-  std::vector<Vec3> sphere(mesh.vertices.size(), Vec3::Zero());
+  std::vector<Vec3> sphere(shapes.front().size(), Vec3::Zero());
   place_base(pm, sphere, options.seed);
-  refine_on_sphere(pm, {&positions}, {}, options, sphere, ProgressSlice(progress, "refine", 0.1, 1.0));
+  std::vector<const std::vector<Vec3>*> geometries;
+  for (const auto& p : positions) geometries.push_back(&p);
+  refine_on_sphere(pm, geometries, {}, options, sphere, ProgressSlice(progress, "refine", 0.1, 1.0));
   result.seconds_optimize = seconds_since(optimize_start);
 
   result.sphere = std::move(sphere);
-  result.report = measure_spherical_map(mesh, result.sphere);
+  result.report = measure_spherical_map({shapes.front(), triangles}, result.sphere);
   return result;
 }
 

@@ -1,0 +1,74 @@
+// Consistent spherical parameterization of a set of genus-0 meshes
+// (thesis 3.2): corresponding features of all members land on one common
+// point of the sphere each, and those points are chosen to suit every shape.
+//
+//   1. unconstrained map of one member -> initial feature locations;
+//   2. constrained map of every other member to them;
+//   3. remesh every member on one octahedral grid, features snapped to samples;
+//   4. one mesh, the grid, carrying all n remeshed shapes;
+//   5. its unconstrained map, stretch and quadric summed over the shapes,
+//      gives feature locations that respect every shape;
+//   6. constrained map of every member to those locations.
+#pragma once
+#include <vector>
+
+#include "consistent_maps/constrained_parameterization.h"
+#include "consistent_maps/mesh.h"
+#include "consistent_maps/progress.h"
+
+namespace cmaps {
+
+struct ConsistentMember {
+  TriangleMesh mesh;
+  std::vector<int> features;  // per feature: this member's vertex, or -1 where it lacks the feature
+};
+
+struct ConsistentOptions {
+  SphereOptions sphere;
+  int first = -1;  // member seeding step 1; -1 = the first member that has every feature
+  int grid = 64;   // octahedral grid resolution of the intermediate remeshes (steps 3-5)
+};
+
+struct ConsistentResult {
+  std::vector<Vec3> feature_locations;  // per feature: the common unit vector (step 5)
+  std::vector<Vec3> initial_locations;  // per feature: from the first member alone (step 1)
+  std::vector<ConstrainedResult> members;  // final maps (step 6), in member order
+  int first = 0;
+  double seconds = 0;
+};
+
+// Throws InvalidInput when feature lists differ in length, name a vertex out
+// of range, leave a member with fewer than 3 features, or no member has every
+// feature; TopologyError for a member that is not closed genus 0.
+ConsistentResult consistent_spherical_parameterization(const std::vector<ConsistentMember>& members,
+                                                       const ConsistentOptions& options = {},
+                                                       const ProgressCallback& progress = {});
+
+// Adds a member to an existing set later (thesis 4.2): its constrained map to
+// the set's feature locations; features it lacks (-1) are left free.
+ConstrainedResult parameterize_to_locations(const ConsistentMember& member, const std::vector<Vec3>& locations,
+                                            const SphereOptions& options = {},
+                                            const ProgressCallback& progress = {});
+
+// A member's map as a plain parameterized surface: the refined triangulation
+// (input vertices, then Steiner vertices at their surface positions) and one
+// unit vector per vertex.
+struct ParameterizedSurface {
+  TriangleMesh surface;
+  std::vector<Vec3> sphere;
+};
+ParameterizedSurface parameterized_surface(const TriangleMesh& mesh, const ConstrainedResult& map);
+
+// Consistent remeshes: every member sampled at the same sphere points, so
+// they share one connectivity; feature k sits at vertex feature_vertices[k].
+struct ConsistentRemesh {
+  std::vector<Vec3> sphere;                 // the sample points
+  std::vector<Triangle> triangles;          // their connectivity
+  std::vector<std::vector<Vec3>> positions; // per member: one position per sample
+  std::vector<int> feature_vertices;        // per feature
+};
+// On the octahedral grid of resolution n (even, >= 2).
+ConsistentRemesh consistent_remesh(const std::vector<ConsistentMember>& members, const ConsistentResult& result,
+                                   int n, int threads = 2);
+
+}  // namespace cmaps

@@ -1,0 +1,159 @@
+#include "consistent_maps/consistent_parameterization.h"
+
+#include <chrono>
+#include <string>
+
+#include "consistent_maps/errors.h"
+#include "consistent_maps/mesh_check.h"
+#include "consistent_maps/octahedral_grid.h"
+#include "consistent_maps/remesh.h"
+#include "consistent_maps/spherical_parameterization.h"
+
+namespace cmaps {
+namespace {
+
+// The features a member has, with their indices into the feature list.
+struct PresentFeatures {
+  std::vector<int> vertices;
+  std::vector<int> names;
+};
+
+PresentFeatures present(const ConsistentMember& member) {
+  PresentFeatures p;
+  for (int k = 0; k < static_cast<int>(member.features.size()); ++k)
+    if (member.features[k] >= 0) {
+      p.vertices.push_back(member.features[k]);
+      p.names.push_back(k);
+    }
+  return p;
+}
+
+void validate(const std::vector<ConsistentMember>& members, const ConsistentOptions& options) {
+  if (members.size() < 2) throw InvalidInput("a consistent set needs at least 2 meshes");
+  const size_t k = members.front().features.size();
+  for (size_t i = 0; i < members.size(); ++i) {
+    const auto& m = members[i];
+    if (m.features.size() != k)
+      throw InvalidInput("mesh " + std::to_string(i) + " lists " + std::to_string(m.features.size()) +
+                         " features, mesh 0 lists " + std::to_string(k));
+    for (int v : m.features)
+      if (v < -1 || v >= static_cast<int>(m.mesh.vertices.size()))
+        throw InvalidInput("mesh " + std::to_string(i) + ": feature vertex " + std::to_string(v) +
+                           " is out of range (mesh has " + std::to_string(m.mesh.vertices.size()) + " vertices)");
+    if (present(m).vertices.size() < 3)
+      throw InvalidInput("mesh " + std::to_string(i) + " has fewer than 3 of the features");
+  }
+  if (options.first >= static_cast<int>(members.size())) throw InvalidInput("first member out of range");
+}
+
+int choose_first(const std::vector<ConsistentMember>& members, int requested) {
+  auto complete = [](const ConsistentMember& m) { return present(m).vertices.size() == m.features.size(); };
+  if (requested >= 0) {
+    if (!complete(members[requested]))
+      throw InvalidInput("mesh " + std::to_string(requested) + " lacks some features; it cannot seed the set");
+    return requested;
+  }
+  for (size_t i = 0; i < members.size(); ++i)
+    if (complete(members[i])) return static_cast<int>(i);
+  throw InvalidInput("no mesh has every feature; one must, to seed the feature locations");
+}
+
+// The same mesh facing outwards, so that maps of all members turn alike.
+TriangleMesh outward(const TriangleMesh& mesh) {
+  TriangleMesh m = mesh;
+  if (signed_volume(m) < 0)
+    for (Triangle& t : m.triangles) std::swap(t[1], t[2]);
+  return m;
+}
+
+ProgressCallback slice(const ProgressCallback& progress, double begin, double end) {
+  if (!progress) return {};
+  return [&progress, begin, end](double f, const std::string& stage) { return progress(begin + (end - begin) * f, stage); };
+}
+
+}  // namespace
+
+ParameterizedSurface parameterized_surface(const TriangleMesh& mesh, const ConstrainedResult& map) {
+  ParameterizedSurface p;
+  p.surface.vertices = mesh.vertices;
+  p.surface.triangles = map.triangles;
+  p.sphere = map.sphere;
+  for (const SteinerVertex& s : map.steiner) {
+    Vec3 x = Vec3::Zero();
+    for (int k = 0; k < 3; ++k)
+      if (s.vertices[k] >= 0) x += s.weights[k] * mesh.vertices[s.vertices[k]];
+    p.surface.vertices.push_back(x);
+    p.sphere.push_back(s.sphere);
+  }
+  return p;
+}
+
+ConstrainedResult parameterize_to_locations(const ConsistentMember& member, const std::vector<Vec3>& locations,
+                                            const SphereOptions& options, const ProgressCallback& progress) {
+  if (locations.size() != member.features.size())
+    throw InvalidInput("got " + std::to_string(locations.size()) + " locations for " +
+                       std::to_string(member.features.size()) + " features");
+  const PresentFeatures p = present(member);
+  std::vector<Vec3> targets;
+  for (int k : p.names) targets.push_back(locations[k]);
+  return constrained_spherical_parameterization(member.mesh, p.vertices, targets, options, progress);
+}
+
+ConsistentResult consistent_spherical_parameterization(const std::vector<ConsistentMember>& members,
+                                                       const ConsistentOptions& options,
+                                                       const ProgressCallback& progress) {
+  validate(members, options);
+  const auto start = std::chrono::steady_clock::now();
+  const int n = static_cast<int>(members.size());
+  ConsistentResult result;
+  result.first = choose_first(members, options.first);
+  const double share = 1.0 / (2 * n + 2);  // progress per map computed
+
+  // 1. Initial locations from the first member alone.
+  const ConsistentMember& first = members[result.first];
+  const SphereResult seed =
+      spherical_parameterization(outward(first.mesh), options.sphere, slice(progress, 0, share));
+  for (int v : first.features) result.initial_locations.push_back(seed.sphere[v]);
+
+  // 2-3. Every member mapped to them, then sampled on one grid with the
+  // features snapped to samples.
+  const OctahedralGrid grid = octahedral_grid(options.grid);
+  std::vector<Vec3> samples = grid.sphere;
+  const std::vector<int> feature_samples = snap_features(samples, result.initial_locations);
+  std::vector<std::vector<Vec3>> shapes;
+  for (int i = 0; i < n; ++i) {
+    const ConstrainedResult map = parameterize_to_locations(members[i], result.initial_locations, options.sphere,
+                                                            slice(progress, (1 + i) * share, (2 + i) * share));
+    const ParameterizedSurface p = parameterized_surface(members[i].mesh, map);
+    shapes.push_back(resample(p.surface, p.sphere, samples, options.sphere.threads));
+  }
+
+  // 4-5. The grid carrying every shape: its map places the features.
+  const SphereResult common = spherical_parameterization(grid.triangles, shapes, options.sphere,
+                                                         slice(progress, (1 + n) * share, (2 + n) * share));
+  for (int s : feature_samples) result.feature_locations.push_back(common.sphere[s]);
+
+  // 6. Final maps to those locations.
+  for (int i = 0; i < n; ++i)
+    result.members.push_back(parameterize_to_locations(members[i], result.feature_locations, options.sphere,
+                                                       slice(progress, (2 + n + i) * share, (3 + n + i) * share)));
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+ConsistentRemesh consistent_remesh(const std::vector<ConsistentMember>& members, const ConsistentResult& result,
+                                   int n, int threads) {
+  if (members.size() != result.members.size()) throw InvalidInput("members do not match the computed set");
+  const OctahedralGrid grid = octahedral_grid(n);
+  ConsistentRemesh remesh;
+  remesh.sphere = grid.sphere;
+  remesh.triangles = grid.triangles;
+  remesh.feature_vertices = snap_features(remesh.sphere, result.feature_locations);
+  for (size_t i = 0; i < members.size(); ++i) {
+    const ParameterizedSurface p = parameterized_surface(members[i].mesh, result.members[i]);
+    remesh.positions.push_back(resample(p.surface, p.sphere, remesh.sphere, threads));
+  }
+  return remesh;
+}
+
+}  // namespace cmaps

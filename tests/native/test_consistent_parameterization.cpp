@@ -1,0 +1,171 @@
+// Consistent parameterization of a set: common feature locations, and on sets
+// with known correspondence (shared vertex order) the maps agree with it.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "consistent_maps/consistent_parameterization.h"
+#include "consistent_maps/errors.h"
+#include "consistent_maps/mesh_io.h"
+#include "consistent_maps/sphere_locator.h"
+#include "test_support.h"
+
+namespace cmaps {
+namespace {
+
+using test::shared_mesh;
+
+// Issue 4 aims at 2 %; measured 2.5-2.8 % with 8 features (BENCHMARKS.md).
+// A map that ignored the correspondence would be off by 20 % or more.
+constexpr double kGroundTruthTolerance = 0.03;
+
+std::vector<int> farthest_points(const TriangleMesh& mesh, int count) {
+  std::vector<int> chosen{0};
+  std::vector<double> distance(mesh.vertices.size(), std::numeric_limits<double>::infinity());
+  while (static_cast<int>(chosen.size()) < count) {
+    for (size_t v = 0; v < distance.size(); ++v)
+      distance[v] = std::min(distance[v], (mesh.vertices[v] - mesh.vertices[chosen.back()]).squaredNorm());
+    chosen.push_back(static_cast<int>(std::max_element(distance.begin(), distance.end()) - distance.begin()));
+  }
+  return chosen;
+}
+
+double diagonal(const TriangleMesh& mesh) {
+  Vec3 lo = mesh.vertices.front(), hi = lo;
+  for (const Vec3& v : mesh.vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  return (hi - lo).norm();
+}
+
+// Mean distance, relative to B's diagonal, between where vertex i of A maps
+// on B through the common sphere and vertex i of B.
+double ground_truth_error(const ConsistentMember& a, const ConstrainedResult& map_a, const ConsistentMember& b,
+                          const ConstrainedResult& map_b) {
+  const ParameterizedSurface pb = parameterized_surface(b.mesh, map_b);
+  const SphereLocator locator(pb.sphere, pb.surface.triangles);
+  const std::vector<Vec3> mapped =
+      locator.interpolate(pb.surface.vertices, locator.locate_all(map_a.sphere, 2), 2);
+  double sum = 0;
+  for (size_t i = 0; i < a.mesh.vertices.size(); ++i) sum += (mapped[i] - b.mesh.vertices[i]).norm();
+  return sum / a.mesh.vertices.size() / diagonal(b.mesh);
+}
+
+std::vector<ConsistentMember> shared_order_set(const std::vector<std::string>& paths, int features) {
+  std::vector<ConsistentMember> members;
+  for (const auto& path : paths) members.push_back({read_mesh(shared_mesh(path)), {}});
+  const std::vector<int> chosen = farthest_points(members.front().mesh, features);
+  for (auto& m : members) m.features = chosen;
+  return members;
+}
+
+void expect_consistent(const std::vector<ConsistentMember>& members, const ConsistentResult& r) {
+  ASSERT_EQ(r.members.size(), members.size());
+  for (size_t i = 0; i < members.size(); ++i) {
+    const ConstrainedResult& m = r.members[i];
+    EXPECT_EQ(m.report.flipped, 0) << i;
+    EXPECT_EQ(m.report.degenerate, 0) << i;
+    for (size_t k = 0; k < members[i].features.size(); ++k)
+      if (members[i].features[k] >= 0)
+        EXPECT_LT((m.sphere[members[i].features[k]] - r.feature_locations[k]).norm(), 1e-15);
+  }
+}
+
+TEST(Consistent, DeformedSpheresMatchTheirKnownCorrespondence) {
+  const auto members = shared_order_set({"sets/defsphere/defSphere0.ply", "sets/defsphere/defSphere3.ply",
+                                         "sets/defsphere/defSphere6.ply", "sets/defsphere/defSphere9.ply"},
+                                        8);
+  ConsistentOptions options;
+  options.grid = 32;
+  const ConsistentResult r = consistent_spherical_parameterization(members, options);
+  expect_consistent(members, r);
+  for (size_t j = 1; j < members.size(); ++j)
+    EXPECT_LT(ground_truth_error(members[0], r.members[0], members[j], r.members[j]), kGroundTruthTolerance) << j;
+}
+
+TEST(Consistent, CactusPosesMatchTheirKnownCorrespondence) {
+  const auto members =
+      shared_order_set({"sets/cactus/cactus0.ply", "sets/cactus/cactus2.ply", "sets/cactus/cactus4.ply"}, 8);
+  const ConsistentResult r = consistent_spherical_parameterization(members);
+  expect_consistent(members, r);
+  for (size_t j = 1; j < members.size(); ++j)
+    EXPECT_LT(ground_truth_error(members[0], r.members[0], members[j], r.members[j]), kGroundTruthTolerance) << j;
+}
+
+TEST(Consistent, MissingFeaturesAndLaterMembers) {
+  auto members = shared_order_set({"sets/defsphere/defSphere1.ply", "sets/defsphere/defSphere2.ply",
+                                   "sets/defsphere/defSphere4.ply"},
+                                  8);
+  members[2].features[5] = -1;  // this member lacks one feature
+  ConsistentOptions options;
+  options.grid = 32;
+  const ConsistentResult r = consistent_spherical_parameterization(members, options);
+  expect_consistent(members, r);
+  ConsistentMember later{read_mesh(shared_mesh("sets/defsphere/defSphere5.ply")), members[0].features};
+  later.features[0] = -1;
+  const ConstrainedResult added = parameterize_to_locations(later, r.feature_locations);
+  EXPECT_EQ(added.report.flipped, 0);
+  EXPECT_LT((added.sphere[later.features[1]] - r.feature_locations[1]).norm(), 1e-15);
+}
+
+TEST(Consistent, ResultsDoNotDependOnPositionOrScale) {
+  auto members = shared_order_set({"sets/defsphere/defSphere0.ply", "sets/defsphere/defSphere7.ply"}, 8);
+  ConsistentOptions options;
+  options.grid = 32;
+  const ConsistentResult a = consistent_spherical_parameterization(members, options);
+  for (Vec3& v : members[1].mesh.vertices) v = v * 250 + Vec3(1000, -30, 4);
+  const ConsistentResult b = consistent_spherical_parameterization(members, options);
+  for (size_t k = 0; k < a.feature_locations.size(); ++k)
+    EXPECT_LT((a.feature_locations[k] - b.feature_locations[k]).norm(), 0.02) << k;
+}
+
+TEST(Consistent, RemeshesShareConnectivityAndFeatureVertices) {
+  const auto members =
+      shared_order_set({"sets/defsphere/defSphere0.ply", "sets/defsphere/defSphere8.ply"}, 8);
+  ConsistentOptions options;
+  options.grid = 32;
+  const ConsistentResult r = consistent_spherical_parameterization(members, options);
+  const ConsistentRemesh remesh = consistent_remesh(members, r, 16);
+  ASSERT_EQ(remesh.positions.size(), 2u);
+  EXPECT_EQ(remesh.positions[0].size(), remesh.sphere.size());
+  for (size_t k = 0; k < members[0].features.size(); ++k) {
+    // Each member's feature vertex lands on its own feature point.
+    for (size_t i = 0; i < members.size(); ++i)
+      EXPECT_LT((remesh.positions[i][remesh.feature_vertices[k]] - members[i].mesh.vertices[members[i].features[k]])
+                    .norm(),
+                1e-9 * diagonal(members[i].mesh));
+  }
+}
+
+TEST(Consistent, BadInputIsRefused) {
+  auto members = shared_order_set({"sets/defsphere/defSphere0.ply", "sets/defsphere/defSphere1.ply"}, 4);
+  auto refused = [](const std::vector<ConsistentMember>& m, const std::string& text) {
+    try {
+      consistent_spherical_parameterization(m);
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+    }
+  };
+  auto bad = members;
+  bad[1].features.pop_back();
+  refused(bad, "lists 3 features");
+  bad = members;
+  bad[1].features[0] = 99999;
+  refused(bad, "out of range");
+  bad = members;
+  bad[0].features[0] = bad[1].features[1] = -1;
+  refused(bad, "no mesh has every feature");
+  bad = members;
+  bad[1].features[0] = bad[1].features[1] = -1;
+  refused(bad, "fewer than 3");
+  refused({members[0]}, "at least 2");
+  bad = members;
+  bad[1].mesh = read_mesh(shared_mesh("higher-genus/torus.obj"));
+  bad[1].features = {0, 1, 2, 3};
+  EXPECT_THROW(consistent_spherical_parameterization(bad), TopologyError);
+}
+
+}  // namespace
+}  // namespace cmaps
