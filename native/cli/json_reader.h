@@ -230,6 +230,7 @@ class JsonParser {
     std::string out;
     for (;;) {
       if (at_end()) fail("unexpected end of file in a string (missing closing '\"')");
+      const int at_line = line_, at_column = column_;  // escape errors point at the backslash
       const char c = next();
       if (c == '"') return out;
       if (static_cast<unsigned char>(c) < 0x20) fail("control character in a string (use \\n, \\t, ...)");
@@ -259,7 +260,9 @@ class JsonParser {
           append_utf8(out, code);
           break;
         }
-        default: fail("invalid escape '\\" + std::string(1, e) + "' in a string");
+        default:
+          line_ = at_line, column_ = at_column;
+          fail("invalid escape '\\" + std::string(1, e) + "' in a string");
       }
     }
   }
