@@ -6,7 +6,7 @@ from .properties import set_objects
 
 CATEGORY = "Consistent Maps"
 RESULT_ICONS = {"NONE": 'BLANK1', "CURRENT": 'CHECKMARK', "STALE": 'ERROR'}
-RESULT_TEXT = {"NONE": "not computed", "CURRENT": "up to date", "STALE": "stale: the mesh changed"}
+RESULT_TEXT = {"NONE": "not computed", "CURRENT": "up to date", "STALE": "stale (mesh edited)"}
 MAX_PROBLEM_LINES = 6
 
 
@@ -66,12 +66,13 @@ class CM_PT_main(_Panel, bpy.types.Panel):
 def _draw_status(layout, obj):
     s = status.of(obj)
     column = layout.column(align=True)
-    column.label(text=f"{obj.name}: {s.triangles} triangles, genus {s.genus}, "
-                      f"{'manifold' if s.manifold else 'NOT manifold'}")
-    column.label(text=f"Features: {len(s.placed)} placed"
-                      + (f", {len(s.unplaced)} to place" if s.unplaced else "")
-                      + (f", {len(s.ambiguous)} invalid" if s.ambiguous else ""))
-    column.label(text=f"Result: {RESULT_TEXT[s.result]}", icon=RESULT_ICONS[s.result])
+    column.label(text=obj.name, icon='OBJECT_DATA')
+    column.label(text=f"{s.triangles} triangles, genus {s.genus}")
+    column.label(text="Manifold" if s.manifold else "Not manifold", icon='CHECKMARK' if s.manifold else 'ERROR')
+    column.label(text=f"{len(s.placed)} features placed")
+    if s.unplaced or s.ambiguous:
+        column.label(text=f"{len(s.unplaced)} to place, {len(s.ambiguous)} invalid", icon='ERROR')
+    column.label(text=RESULT_TEXT[s.result].capitalize(), icon=RESULT_ICONS[s.result])
 
 
 def _draw_problems(layout, objects):
@@ -111,7 +112,7 @@ class CM_PT_features(_Panel, bpy.types.Panel):
         column.operator("consistent_maps.rename_feature", text="", icon='GREASEPENCIL')
         layout.operator("consistent_maps.copy_feature_names", icon='COPYDOWN')
         if obj.mode != 'EDIT':
-            layout.label(text="Add features in Edit Mode: select one vertex, press +", icon='INFO')
+            layout.label(text="Edit Mode: pick a vertex, press +", icon='INFO')
         _draw_missing(layout, obj, set_objects(context.scene))
 
 
@@ -150,7 +151,7 @@ class CM_PT_compute(_Panel, bpy.types.Panel):
             row.prop(context.window_manager, "consistent_maps_progress", slider=True)
             layout.label(text=running.stage)
             layout.operator("consistent_maps.cancel", icon='CANCEL')
-        layout.label(text="Maps are unconstrained for now: features are not yet aligned", icon='INFO')
+        layout.label(text="Features not aligned yet", icon='INFO')
 
 
 class CM_PT_results(_Panel, bpy.types.Panel):
@@ -164,15 +165,18 @@ class CM_PT_results(_Panel, bpy.types.Panel):
         for obj in objects:
             s = status.of(obj)
             stats = results.stats(obj.data)
+            row = column.row()
+            row.label(text=obj.name, icon=RESULT_ICONS[s.result])
             if s.result == results.NONE or not stats:
-                column.label(text=f"{obj.name}: not computed", icon='BLANK1')
+                row.label(text="not computed")
                 continue
-            column.label(text=f"{obj.name}: efficiency {stats['efficiency']:.3f}, {stats['seconds']:.1f} s"
-                              + ("" if stats.get("bijective") else ", NOT bijective"),
-                         icon=RESULT_ICONS[s.result])
+            row.label(text=f"{stats['efficiency']:.3f}, {stats['seconds']:.1f} s"
+                           + ("" if stats.get("bijective") else ", FLIPS"))
+        if objects:
+            column.label(text="Efficiency (best 1), time")
         row = layout.row(align=True)
-        row.operator("consistent_maps.sphere_preview", text="Show Sphere", icon='SPHERE').show = True
-        row.operator("consistent_maps.sphere_preview", text="Hide Sphere", icon='MESH_DATA').show = False
+        row.operator("consistent_maps.sphere_preview", text="Sphere", icon='SPHERE').show = True
+        row.operator("consistent_maps.sphere_preview", text="Shape", icon='MESH_DATA').show = False
 
 
 CLASSES = (CM_UL_members, CM_UL_features, CM_PT_main, CM_PT_features, CM_PT_compute, CM_PT_results)

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Runs the add-on suite (tests/blender/test_addon.py) twice: inside Debian's Blender 3.4
 # application and under the bpy module from PyPI (4.x, pinned in requirements-bpy.txt,
-# installed into .venv-bpy). Builds the add-on zip first (CMake target package_addon).
+# installed into .venv-bpy), then, when xvfb-run exists, the interactive check (gui_check.py:
+# modal Compute, panels, overlay; screenshots in out/blender/). Builds the add-on zip first
+# (CMake target package_addon).
 #
 #   tests/blender/run.sh            # both
 #   tests/blender/run.sh blender    # only the Blender application ($BLENDER, default: blender)
@@ -49,6 +51,24 @@ run_blender() {
   "$BLENDER" -b --factory-startup --python-exit-code 1 -P tests/blender/run_tests.py 2>&1 | grep -Ev "$NOISE"
 }
 
+run_gui() {
+  echo "==> interactive check in the Blender application under Xvfb (tests/blender/gui_check.py)"
+  local empty output
+  empty=$(mktemp -d)/empty.blend
+  "$BLENDER" -b --factory-startup --python-expr "import bpy; bpy.ops.wm.save_as_mainfile(filepath='$empty')" \
+    >/dev/null 2>&1 || return 1
+  output=$(timeout 300 xvfb-run -a -s "-screen 0 1300x1300x24" \
+           "$BLENDER" --factory-startup "$empty" -P tests/blender/gui_check.py 2>&1)
+  local code=$?
+  rm -rf "$(dirname "$empty")"
+  grep -Ev "$NOISE" <<<"$output" | grep -E "GUI CHECK|Traceback|Error" || true
+  if grep -q Traceback <<<"$output"; then
+    grep -A12 Traceback <<<"$output"
+    return 1
+  fi
+  return $code
+}
+
 run_bpy() {
   echo "==> add-on tests under the bpy module ($VENV)"
   if [[ ! -x $VENV/bin/python ]]; then
@@ -63,7 +83,14 @@ run_bpy() {
   "$VENV/bin/python" tests/blender/run_tests.py 2>&1 | grep -Ev "$NOISE"
 }
 
-if [[ $which == all || $which == blender ]]; then run_blender || failed+=("blender"); fi
+if [[ $which == all || $which == blender ]]; then
+  run_blender || failed+=("blender")
+  if command -v xvfb-run >/dev/null; then
+    run_gui || failed+=("gui")
+  else
+    echo "(xvfb-run not found: interactive check skipped; apt-get install xvfb to run it)"
+  fi
+fi
 if [[ $which == all || $which == bpy ]]; then run_bpy || failed+=("bpy"); fi
 
 if ((${#failed[@]})); then
