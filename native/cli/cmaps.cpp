@@ -10,6 +10,8 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <fstream>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <new>
@@ -17,8 +19,10 @@
 #include <string>
 #include <vector>
 
+#include "consistent_maps/consistent_parameterization.h"
 #include "consistent_maps/constrained_parameterization.h"
 #include "consistent_maps/errors.h"
+#include "consistent_maps/geometry_image.h"
 #include "consistent_maps/mesh_check.h"
 #include "consistent_maps/mesh_io.h"
 #include "consistent_maps/spherical_parameterization.h"
@@ -35,6 +39,8 @@ const char* const kUsage = R"(usage:
   cmaps sphere IN -o OUT [--seed N] [--effort 0|1|2] [--threads N] [--json]
   cmaps constrained IN --features FILE [--targets FILE] -o OUT [--refined-mesh PATH]
                     [--seed N] [--effort 0|1|2] [--threads N] [--json]
+  cmaps consistent IN IN ... --features FILE -o DIR [--remesh N] [--grid N] [--first K]
+                   [--seed N] [--effort 0|1|2] [--threads N] [--json]
   cmaps --help | --version
 
 commands:
@@ -49,16 +55,36 @@ commands:
            point. OUT holds the input vertices first, in input order, then
            any Steiner vertices the map needed, with the faces of the refined
            triangulation the map is piecewise linear on.
+  consistent
+           map a set of meshes so that each named feature lands on one common
+           point of the sphere on every mesh. Writes, for the k-th input
+           (0-based), DIR/<k>.sphere.obj (the input's faces and vertex order,
+           positions replaced by unit vectors), DIR/<k>.refined_sphere.obj and
+           DIR/<k>.refined.obj (the refined triangulation the map is piecewise
+           linear on, Steiner vertices included, on the sphere and on the
+           surface), DIR/features.json (name -> common unit vector) and, with
+           --remesh N, DIR/<k>.remesh.obj (all remeshes share one connectivity),
+           geometry images DIR/<k>.geometry.npy, DIR/<k>.geometry.png,
+           DIR/<k>.normals.npy and DIR/remesh_features.json (name -> remesh
+           vertex). Nothing is written unless the whole computation succeeds.
 
 options:
-  -o, --output OUT   output file of `sphere` and `constrained`
-  --features FILE    JSON object {"name": vertex_index, ...} (0-based, at least 3)
+  -o, --output OUT   output file of `sphere` and `constrained`; output
+                     directory of `consistent` (created if missing)
+  --features FILE    JSON object {"name": vertex_index, ...} (0-based, at least 3);
+                     for `consistent` {"name": [index or null per input], ...}
   --targets FILE     JSON object {"name": [x, y, z], ...} with the same names
                      (normalized; distinct); without it the targets are where
                      the unconstrained map puts the features
   --refined-mesh PATH
                      also write OUT's mesh with 3D positions (Steiner vertices
                      on the input surface)
+  --remesh N         consistent remeshes on the octahedral grid of resolution N
+                     (even, 2..4096; N^2 + 2 vertices) and their geometry images
+  --grid N           octahedral grid resolution of the intermediate remeshes
+                     (even, 2..4096; default 64)
+  --first K          input seeding the feature locations (default: the first
+                     input that has every feature)
   --seed N           random seed; equal seeds give equal results (default 1)
   --effort E         0 = fast preview, 1 = default, 2 = best quality
   --threads N        worker threads (default 2)
@@ -75,7 +101,10 @@ struct UsageError : std::runtime_error {
 
 struct Arguments {
   std::string command, input, output;
-  std::string features, targets, refined_mesh;  // constrained only
+  std::vector<std::string> inputs;              // consistent: every input; otherwise just `input`
+  std::string features, targets, refined_mesh;  // constrained only (features: consistent too)
+  int remesh = 0, grid = 64, first = -1;        // consistent only
+  bool remesh_given = false, grid_given = false, first_given = false;
   std::uint64_t seed = 1;
   int effort = 1;
   int threads = 2;
@@ -112,25 +141,52 @@ Arguments parse(const std::vector<std::string>& args) {
     else if (arg == "--seed") a.seed = std::uint64_t(parse_integer(arg, value(), 0, 1LL << 62));
     else if (arg == "--effort") a.effort = int(parse_integer(arg, value(), 0, 2));
     else if (arg == "--threads") a.threads = int(parse_integer(arg, value(), 1, 256));
+    else if (arg == "--remesh") a.remesh = int(parse_integer(arg, value(), 2, 4096)), a.remesh_given = true;
+    else if (arg == "--grid") a.grid = int(parse_integer(arg, value(), 2, 4096)), a.grid_given = true;
+    else if (arg == "--first") a.first = int(parse_integer(arg, value(), 0, 1 << 20)), a.first_given = true;
     else if (arg.size() > 1 && arg[0] == '-') throw UsageError("unknown option '" + arg + "' (see cmaps --help)");
     else if (a.command.empty()) a.command = arg;
-    else if (a.input.empty()) a.input = arg;
+    else if (a.inputs.empty() || a.command == "consistent") a.inputs.push_back(arg);
     else throw UsageError("unexpected argument '" + arg + "' (see cmaps --help)");
   }
   if (a.command.empty()) throw UsageError("missing command (see cmaps --help)");
-  if (a.command != "check" && a.command != "sphere" && a.command != "constrained")
+  if (a.command != "check" && a.command != "sphere" && a.command != "constrained" && a.command != "consistent")
     throw UsageError("unknown command '" + a.command + "' (see cmaps --help)");
-  if (a.input.empty()) throw UsageError("missing input mesh (see cmaps --help)");
+  if (a.inputs.empty()) throw UsageError("missing input mesh (see cmaps --help)");
+  a.input = a.inputs.front();
   if (a.command != "check" && a.output.empty())
-    throw UsageError(a.command + " needs -o OUT (see cmaps --help)");
+    throw UsageError(a.command + (a.command == "consistent" ? " needs -o DIR" : " needs -o OUT") +
+                     " (see cmaps --help)");
   if (a.command == "check" && !a.output.empty()) throw UsageError("check takes no -o");
-  if (a.command == "constrained") {
+  if (a.command != "consistent") {
+    for (const auto& [option, given] : {std::pair<const char*, bool>{"--remesh", a.remesh_given},
+                                        {"--grid", a.grid_given},
+                                        {"--first", a.first_given}})
+      if (given) throw UsageError(a.command + " takes no " + option + " (only consistent does)");
+  }
+  if (a.command == "consistent") {
+    if (a.inputs.size() < 2)
+      throw UsageError("consistent needs at least 2 input meshes, got " + std::to_string(a.inputs.size()));
+    if (a.features.empty()) throw UsageError("consistent needs --features FILE (see cmaps --help)");
+    if (a.remesh_given && a.remesh % 2 != 0)
+      throw UsageError("--remesh expects an even resolution, got " + std::to_string(a.remesh));
+    if (a.grid % 2 != 0) throw UsageError("--grid expects an even resolution, got " + std::to_string(a.grid));
+    if (a.first_given && a.first >= int(a.inputs.size()))
+      throw UsageError("--first " + std::to_string(a.first) + " is out of range (" + std::to_string(a.inputs.size()) +
+                       " inputs, numbered from 0)");
+    for (const auto& [option, given] : {std::pair<const char*, const std::string&>{"--targets", a.targets},
+                                        {"--refined-mesh", a.refined_mesh}})
+      if (!given.empty()) throw UsageError("consistent takes no " + std::string(option) + " (only constrained does)");
+  } else if (a.command == "constrained") {
     if (a.features.empty()) throw UsageError("constrained needs --features FILE (see cmaps --help)");
   } else {
     for (const auto& [option, given] : {std::pair<const char*, const std::string&>{"--features", a.features},
                                         {"--targets", a.targets},
                                         {"--refined-mesh", a.refined_mesh}})
-      if (!given.empty()) throw UsageError(a.command + " takes no " + option + " (only constrained does)");
+      if (!given.empty())
+        throw UsageError(a.command + " takes no " + option +
+                         (std::string(option) == "--features" ? " (only constrained and consistent do)"
+                                                              : " (only constrained does)"));
   }
   return a;
 }
@@ -170,6 +226,11 @@ struct Outcome {
   std::optional<int> degenerate, steiner_vertices, auxiliary_vertices, retraced_paths, layout_flips;
   std::optional<double> steiner_fraction, max_constraint_error, seconds_paths, seconds_simplify, seconds_optimize;
   std::optional<JsonObject> targets;
+  // `consistent` only: its --json keys (JSON text: per-input lists, objects), null until known.
+  bool consistent = false;
+  std::optional<std::string> faces_per_input, efficiencies, flips, steiner_counts, bijective_per_input,
+      feature_locations, outputs;
+  std::optional<int> first;
 };
 
 void run_check(const Arguments& args, Outcome& out) {
@@ -409,6 +470,213 @@ void run_constrained(const Arguments& args, Outcome& out) {
   out.summary = "wrote " + args.output + (args.refined_mesh.empty() ? "" : " and " + args.refined_mesh) + ": " + line;
 }
 
+// ------------------------------------------------------------------ consistent
+
+// A set's members with their features, read and checked with the input file
+// and the feature named in every message.
+struct SetInput {
+  std::vector<std::string> names;
+  std::vector<cmaps::ConsistentMember> members;
+};
+
+SetInput read_set(const Arguments& args, Outcome& out) {
+  SetInput set;
+  std::vector<int> faces;
+  for (const std::string& path : args.inputs) {
+    cmaps::TriangleMesh mesh = cmaps::read_mesh(path);
+    faces.push_back(int(mesh.triangles.size()));
+    out.faces_per_input = JsonObject::array(faces);
+    try {
+      cmaps::require_sphere_topology(mesh);
+    } catch (const cmaps::TopologyError& e) {
+      throw cmaps::TopologyError(path + ": " + e.what());
+    } catch (const cmaps::InvalidInput& e) {
+      throw cmaps::InvalidInput(path + ": " + e.what());
+    }
+    set.members.push_back({std::move(mesh), {}});
+  }
+
+  const int count = int(args.inputs.size());
+  const auto features = cmaps::read_set_feature_file(args.features, count);
+  if (features.size() < 3)
+    throw cmaps::InvalidInput(args.features + ": need at least 3 features, got " + std::to_string(features.size()));
+  std::vector<std::map<int, std::string>> by_vertex(count);
+  for (const auto& [name, vertices] : features) {
+    set.names.push_back(name);
+    for (int i = 0; i < count; ++i) {
+      const int v = vertices[i], n = int(set.members[i].mesh.vertices.size());
+      const std::string& path = args.inputs[i];
+      if (v >= n)
+        throw cmaps::InvalidInput(args.features + ": feature " + in_quotes(name) + ": vertex " + std::to_string(v) +
+                                  " is out of range for " + path + " (" + std::to_string(n) + " vertices)");
+      if (v >= 0) {
+        const auto [it, inserted] = by_vertex[i].emplace(v, name);
+        if (!inserted)
+          throw cmaps::InvalidInput(args.features + ": features " + in_quotes(it->second) + " and " + in_quotes(name) +
+                                    " are both vertex " + std::to_string(v) + " of " + path);
+      }
+      set.members[i].features.push_back(v);
+    }
+  }
+  const auto lacking = [&](int i) {
+    std::vector<std::string> missing;
+    for (std::size_t k = 0; k < set.names.size(); ++k)
+      if (set.members[i].features[k] < 0) missing.push_back(in_quotes(set.names[k]));
+    return missing;
+  };
+  for (int i = 0; i < count; ++i) {
+    const std::size_t present = set.names.size() - lacking(i).size();
+    if (present < 3)
+      throw cmaps::InvalidInput(args.features + ": " + args.inputs[i] + " has " + std::to_string(present) +
+                                " of the features; every input needs at least 3");
+  }
+  if (args.first_given) {
+    const auto missing = lacking(args.first);
+    if (!missing.empty())
+      throw cmaps::InvalidInput("--first " + std::to_string(args.first) + ": " + args.inputs[args.first] +
+                                " lacks feature " + missing.front() + "; the first input must have every feature");
+  } else {
+    bool complete = false;
+    for (int i = 0; i < count && !complete; ++i) complete = lacking(i).empty();
+    if (!complete)
+      throw cmaps::InvalidInput(args.features +
+                                ": no input has every feature; one must, to seed the feature locations");
+  }
+  return set;
+}
+
+// Rejects an unusable output directory before a long computation: it must
+// be a directory, or not exist yet in an existing directory.
+void check_output_directory(const std::string& dir) {
+  namespace fs = std::filesystem;
+  if (fs::exists(dir)) {
+    if (!fs::is_directory(dir)) throw cmaps::IoError("cannot write into '" + dir + "': it is not a directory");
+    return;
+  }
+  const fs::path parent = fs::path(dir).parent_path();
+  if (!parent.empty() && !fs::is_directory(parent))
+    throw cmaps::IoError("cannot create '" + dir + "': directory '" + parent.string() + "' does not exist");
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream file(path, std::ios::binary);
+  file << text << '\n';
+  if (!file) throw cmaps::IoError("cannot write '" + path + "'");
+}
+
+void run_consistent(const Arguments& args, Outcome& out) {
+  out.consistent = true;
+  check_output_directory(args.output);
+  out.json.add("inputs_count", int(args.inputs.size())).add_json("inputs", JsonObject::array(args.inputs));
+  const SetInput set = read_set(args, out);
+  const std::vector<cmaps::ConsistentMember>& members = set.members;
+  out.json.add("features", int(set.names.size()));
+
+  cmaps::ConsistentOptions options;
+  options.sphere.seed = args.seed;
+  options.sphere.effort = args.effort;
+  options.sphere.threads = args.threads;
+  options.first = args.first;
+  options.grid = args.grid;
+  const cmaps::ConsistentResult result =
+      with_terminal_progress(!args.json && isatty(STDERR_FILENO), [&](const cmaps::ProgressCallback& progress) {
+        return cmaps::consistent_spherical_parameterization(members, options, progress);
+      });
+  if (result.members.size() != members.size() || result.feature_locations.size() != set.names.size())
+    throw cmaps::Error("internal error: the consistent parameterization returned " +
+                       std::to_string(result.members.size()) + " maps for " + std::to_string(members.size()) +
+                       " meshes");
+  std::optional<cmaps::ConsistentRemesh> remesh;
+  if (args.remesh_given) remesh = cmaps::consistent_remesh(members, result, args.remesh, args.threads);
+
+  // Everything to write, prepared in memory: nothing is written unless all of it could be computed.
+  namespace fs = std::filesystem;
+  std::vector<std::string> outputs;
+  std::vector<std::function<void()>> writers;
+  const auto output = [&](const std::string& name, std::function<void(const std::string&)> write) {
+    const std::string path = (fs::path(args.output) / name).string();
+    outputs.push_back(path);
+    writers.push_back([path, write = std::move(write)] { write(path); });
+  };
+  const auto mesh_output = [&](const std::string& name, cmaps::TriangleMesh mesh) {
+    output(name, [mesh = std::move(mesh)](const std::string& path) { cmaps::write_mesh(path, mesh); });
+  };
+
+  std::vector<int> steiner, flipped;
+  std::vector<double> efficiency;
+  std::string bijective = "[";
+  for (std::size_t i = 0; i < members.size(); ++i) {
+    const cmaps::ConstrainedResult& map = result.members[i];
+    const std::string k = std::to_string(i);
+    for (const cmaps::Vec3& p : map.sphere)
+      if (!p.allFinite()) throw cmaps::Error("internal error: the parameterization produced a non-finite position");
+    mesh_output(k + ".sphere.obj", cmaps::TriangleMesh{map.sphere, members[i].mesh.triangles});
+    cmaps::ParameterizedSurface surface = cmaps::parameterized_surface(members[i].mesh, map);
+    mesh_output(k + ".refined_sphere.obj", cmaps::TriangleMesh{surface.sphere, surface.surface.triangles});
+    mesh_output(k + ".refined.obj", std::move(surface.surface));
+    steiner.push_back(int(map.steiner.size()));
+    flipped.push_back(map.report.flipped);
+    efficiency.push_back(map.report.efficiency);
+    bijective += std::string(i ? ", " : "") + (map.report.bijective() ? "true" : "false");
+  }
+
+  JsonObject locations;
+  for (std::size_t k = 0; k < set.names.size(); ++k) {
+    const cmaps::Vec3& p = result.feature_locations[k];
+    locations.add(set.names[k], std::vector<double>{p.x(), p.y(), p.z()});
+  }
+  output("features.json", [text = locations.str()](const std::string& path) { write_text(path, text); });
+
+  if (remesh) {
+    const cmaps::OctahedralGrid grid = cmaps::octahedral_grid(args.remesh);
+    for (std::size_t i = 0; i < members.size(); ++i) {
+      const std::string k = std::to_string(i);
+      cmaps::TriangleMesh mesh{remesh->positions[i], remesh->triangles};
+      const cmaps::GeometryImage geometry = cmaps::geometry_image(grid, mesh.vertices);
+      const cmaps::GeometryImage normals = cmaps::geometry_image(grid, cmaps::vertex_normals(mesh));
+      mesh_output(k + ".remesh.obj", std::move(mesh));
+      output(k + ".geometry.npy", [geometry](const std::string& path) { cmaps::write_geometry_image_npy(path, geometry); });
+      output(k + ".geometry.png", [geometry](const std::string& path) { cmaps::write_geometry_image_png(path, geometry); });
+      output(k + ".normals.npy", [normals](const std::string& path) { cmaps::write_geometry_image_npy(path, normals); });
+    }
+    JsonObject vertices;
+    for (std::size_t k = 0; k < set.names.size(); ++k) vertices.add(set.names[k], remesh->feature_vertices[k]);
+    output("remesh_features.json", [text = vertices.str()](const std::string& path) { write_text(path, text); });
+    out.json.add("remesh", args.remesh).add("remesh_vertices", int(remesh->sphere.size()));
+  } else {
+    out.json.null("remesh").null("remesh_vertices");
+  }
+
+  std::error_code error;
+  fs::create_directories(args.output, error);
+  if (error) throw cmaps::IoError("cannot create '" + args.output + "': " + error.message());
+  for (const auto& write : writers) write();
+
+  out.efficiencies = JsonObject::array(efficiency);
+  out.flips = JsonObject::array(flipped);
+  out.steiner_counts = JsonObject::array(steiner);
+  out.bijective_per_input = bijective + "]";
+  out.feature_locations = locations.str();
+  out.outputs = JsonObject::array(outputs);
+  out.first = result.first;
+  out.json.add("grid", args.grid)
+      .add("seconds_compute", result.seconds)
+      .add("seed", static_cast<unsigned long long>(args.seed))
+      .add("effort", args.effort)
+      .add("threads", args.threads)
+      .add("output", args.output);
+
+  const auto [lo, hi] = std::minmax_element(efficiency.begin(), efficiency.end());
+  int flips = 0, added = 0;
+  for (std::size_t i = 0; i < members.size(); ++i) flips += flipped[i], added += steiner[i];
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "%zu meshes, %zu features on common points (input %d first), stretch efficiency %.4f..%.4f, "
+                "%d flipped, %d Steiner vertices",
+                members.size(), set.names.size(), result.first, *lo, *hi, flips, added);
+  out.summary = "wrote " + std::to_string(outputs.size()) + " files to " + args.output + ": " + line;
+}
+
 std::string one_line(std::string message) {
   std::replace(message.begin(), message.end(), '\n', ' ');
   std::replace(message.begin(), message.end(), '\r', ' ');
@@ -426,6 +694,7 @@ int run(const std::vector<std::string>& argv) {
     out.json.add("command", args.command).add("input", args.input);
     if (args.command == "check") run_check(args, out);
     else if (args.command == "sphere") run_sphere(args, out);
+    else if (args.command == "consistent") run_consistent(args, out);
     else run_constrained(args, out);
   } catch (const UsageError& e) {
     error = e.what(), code = 2;
@@ -439,10 +708,22 @@ int run(const std::vector<std::string>& argv) {
   error = one_line(error);
 
   if (json) {
-    out.json.add("faces", out.faces)
-        .add("seconds", seconds_since(start))
-        .add("stretch_efficiency", out.efficiency)
-        .add("flipped", out.flipped);
+    if (out.consistent) {
+      out.json.add_json("faces", out.faces_per_input)
+          .add("seconds", seconds_since(start))
+          .add_json("stretch_efficiency", out.efficiencies)
+          .add_json("flipped", out.flips)
+          .add_json("steiner_vertices", out.steiner_counts)
+          .add_json("bijective", out.bijective_per_input)
+          .add_json("feature_locations", out.feature_locations)
+          .add("first", out.first)
+          .add_json("outputs", out.outputs);
+    } else {
+      out.json.add("faces", out.faces)
+          .add("seconds", seconds_since(start))
+          .add("stretch_efficiency", out.efficiency)
+          .add("flipped", out.flipped);
+    }
     if (out.constrained) {
       out.json.add("degenerate", out.degenerate)
           .add("bijective", out.bijective)

@@ -1,5 +1,5 @@
-// A small, strict JSON reader for the CLI's input files (feature vertices and
-// target directions): parses any JSON document into a tree, then the two
+// A small, strict JSON reader for the CLI's input files (feature vertices,
+// per set member or of one mesh, and target directions): parses any JSON document into a tree, then the two
 // readers below check the shapes they need. Every error names the file, the
 // line and column, and what is wrong. Beyond RFC 8259 it accepts only the
 // literals NaN, Infinity and -Infinity (Python's json.dump writes them), so
@@ -284,6 +284,20 @@ inline const JsonValue& object_root(const std::string& path, const JsonValue& ro
   return root;
 }
 
+// A vertex index: a non-negative integer (1e2 and 100.0 count as integers).
+// `what` names it in messages, e.g. "feature \"nose\"".
+inline int vertex_index(const std::string& path, const JsonValue& value, const std::string& what) {
+  if (value.kind != JsonValue::Kind::Number)
+    fail(path, value, what + " must be a vertex index, got " + JsonValue::kind_name(value.kind));
+  const double x = value.number;
+  if (!std::isfinite(x) || x != std::floor(x))
+    fail(path, value, what + " must be an integer vertex index, got " + value.text);
+  if (x < 0) fail(path, value, what + " has a negative vertex index " + value.text);
+  if (x > std::numeric_limits<int>::max())
+    fail(path, value, what + " has vertex index " + value.text + ", which is too large");
+  return static_cast<int>(x);
+}
+
 }  // namespace json_detail
 
 // {"name": vertex_index, ...}: names with their vertex indices, in file order.
@@ -293,17 +307,38 @@ inline std::vector<std::pair<std::string, int>> read_feature_file(const std::str
   const JsonValue root = JsonParser::parse_file(path);
   json_detail::object_root(path, root, "{\"name\": vertex_index, ...}");
   std::vector<std::pair<std::string, int>> features;
+  for (const auto& [name, value] : root.members)
+    features.emplace_back(name, json_detail::vertex_index(path, value, "feature \"" + name + "\""));
+  return features;
+}
+
+// {"name": [index_in_mesh_0, index_in_mesh_1, ...], ...} for a set of
+// `meshes` meshes: one vertex index or null (the mesh lacks the feature) per
+// mesh, in input order. Returns the names with their lists (null as -1), in
+// file order; the ranges against the meshes are checked by the caller.
+inline std::vector<std::pair<std::string, std::vector<int>>> read_set_feature_file(const std::string& path,
+                                                                                   int meshes) {
+  const JsonValue root = JsonParser::parse_file(path);
+  json_detail::object_root(path, root, "{\"name\": [vertex_index or null per mesh], ...}");
+  std::vector<std::pair<std::string, std::vector<int>>> features;
   for (const auto& [name, value] : root.members) {
-    if (value.kind != JsonValue::Kind::Number)
+    const std::string what = "feature \"" + name + "\"";
+    if (value.kind != JsonValue::Kind::Array)
       json_detail::fail(path, value,
-                        "feature \"" + name + "\" must be a vertex index, got " + JsonValue::kind_name(value.kind));
-    const double x = value.number;
-    if (!std::isfinite(x) || x != std::floor(x))
-      json_detail::fail(path, value, "feature \"" + name + "\" must be an integer vertex index, got " + value.text);
-    if (x < 0) json_detail::fail(path, value, "feature \"" + name + "\" has a negative vertex index " + value.text);
-    if (x > std::numeric_limits<int>::max())
-      json_detail::fail(path, value, "feature \"" + name + "\" has vertex index " + value.text + ", which is too large");
-    features.emplace_back(name, static_cast<int>(x));
+                        what + " must be a list of one vertex index (or null) per mesh, got " +
+                            JsonValue::kind_name(value.kind));
+    if (static_cast<int>(value.items.size()) != meshes)
+      json_detail::fail(path, value,
+                        what + " lists " + std::to_string(value.items.size()) + " vertices for " +
+                            std::to_string(meshes) + " meshes (one per mesh, null where a mesh lacks it)");
+    std::vector<int> vertices;
+    for (std::size_t i = 0; i < value.items.size(); ++i) {
+      const JsonValue& item = value.items[i];
+      vertices.push_back(item.kind == JsonValue::Kind::Null
+                             ? -1
+                             : json_detail::vertex_index(path, item, what + " in mesh " + std::to_string(i)));
+    }
+    features.emplace_back(name, std::move(vertices));
   }
   return features;
 }

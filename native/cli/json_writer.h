@@ -19,11 +19,7 @@ class JsonObject {
   JsonObject& add(const std::string& key, unsigned long long value) { return raw(key, std::to_string(value)); }
   JsonObject& add(const std::string& key, double value) { return raw(key, number(value)); }
   // An array of numbers, e.g. a point [x, y, z].
-  JsonObject& add(const std::string& key, const std::vector<double>& values) {
-    std::string array = "[";
-    for (std::size_t i = 0; i < values.size(); ++i) array += (i ? ", " : "") + number(values[i]);
-    return raw(key, array + "]");
-  }
+  JsonObject& add(const std::string& key, const std::vector<double>& values) { return raw(key, array(values)); }
   // A nested object.
   JsonObject& add(const std::string& key, const JsonObject& value) { return raw(key, value.str()); }
   template <class T>
@@ -31,6 +27,27 @@ class JsonObject {
     return value ? add(key, *value) : null(key);
   }
   JsonObject& null(const std::string& key) { return raw(key, "null"); }
+  // JSON text built by the caller (e.g. with array() below); null when absent.
+  JsonObject& add_json(const std::string& key, const std::optional<std::string>& json) {
+    return json ? raw(key, *json) : null(key);
+  }
+
+  // JSON arrays of numbers or strings.
+  static std::string array(const std::vector<int>& values) {
+    std::string out = "[";
+    for (std::size_t i = 0; i < values.size(); ++i) out += (i ? ", " : "") + std::to_string(values[i]);
+    return out + "]";
+  }
+  static std::string array(const std::vector<double>& values) {
+    std::string out = "[";
+    for (std::size_t i = 0; i < values.size(); ++i) out += (i ? ", " : "") + number(values[i]);
+    return out + "]";
+  }
+  static std::string array(const std::vector<std::string>& values) {
+    std::string out = "[";
+    for (std::size_t i = 0; i < values.size(); ++i) out += (i ? ", " : "") + quote(values[i]);
+    return out + "]";
+  }
 
   std::string str() const { return "{" + body_ + "}"; }
 

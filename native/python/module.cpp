@@ -6,17 +6,27 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <limits>
+#include <map>
+#include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "consistent_maps/consistent_parameterization.h"
 #include "consistent_maps/constrained_parameterization.h"
 #include "consistent_maps/errors.h"
+#include "consistent_maps/geometry_image.h"
 #include "consistent_maps/mesh_check.h"
 #include "consistent_maps/mesh_io.h"
+#include "consistent_maps/octahedral_grid.h"
+#include "consistent_maps/remesh.h"
+#include "consistent_maps/sphere_locator.h"
 #include "consistent_maps/spherical_parameterization.h"
 #include "consistent_maps/stretch_metric.h"
 #include "consistent_maps/version.h"
@@ -80,23 +90,29 @@ std::vector<cmaps::Vec3> to_points(const py::handle& data, const char* name) {
   return points;
 }
 
-cmaps::TriangleMesh to_mesh(const py::handle& vertices, const py::handle& triangles) {
-  cmaps::TriangleMesh mesh;
-  mesh.vertices = to_points(vertices, "vertices");
+// (m, 3) vertex indices, each in [0, vertex_count).
+std::vector<cmaps::Triangle> to_triangles(const py::handle& triangles, std::size_t vertex_count) {
   const auto indices = to_integers(triangles, "triangles");
   require_n_by_3(indices, "triangles");
   const auto t = indices.unchecked<2>();
-  const std::int64_t n = std::int64_t(mesh.vertices.size());
-  mesh.triangles.resize(t.shape(0));
+  const std::int64_t n = std::int64_t(vertex_count);
+  std::vector<cmaps::Triangle> result(t.shape(0));
   for (py::ssize_t f = 0; f < t.shape(0); ++f) {
     for (int k = 0; k < 3; ++k) {
       const std::int64_t v = t(f, k);
       if (v < 0 || v >= n)
         raise(invalid_mesh_error, "triangle " + std::to_string(f) + " refers to vertex " + std::to_string(v) +
                                       " but the mesh has " + std::to_string(n) + " vertices");
-      mesh.triangles[f][k] = int(v);
+      result[f][k] = int(v);
     }
   }
+  return result;
+}
+
+cmaps::TriangleMesh to_mesh(const py::handle& vertices, const py::handle& triangles) {
+  cmaps::TriangleMesh mesh;
+  mesh.vertices = to_points(vertices, "vertices");
+  mesh.triangles = to_triangles(triangles, mesh.vertices.size());
   return mesh;
 }
 
@@ -222,26 +238,34 @@ cmaps::SphereOptions sphere_options(std::uint64_t seed, int effort, int threads,
   return options;
 }
 
-py::tuple spherical_parameterization(const py::handle& vertices, const py::handle& triangles, std::uint64_t seed,
-                                     int effort, int threads, const py::object& progress) {
-  const cmaps::SphereOptions options = sphere_options(seed, effort, threads, progress);
-  const cmaps::TriangleMesh mesh = to_mesh(vertices, triangles);
+// Runs `compute(callback)` without the GIL, forwarding its progress to the
+// Python callable; returns {its result, wall seconds}. A Python error raised
+// by the callable is re-raised here in place of the cancellation it caused.
+template <class Compute>
+auto run_released(const py::object& progress, Compute&& compute) {
   PythonProgress forward(progress);
   const cmaps::ProgressCallback callback = [&forward](double fraction, const std::string& stage) {
     return forward(fraction, stage);
   };
-
-  cmaps::SphereResult result;
-  double seconds = 0;
   try {
     py::gil_scoped_release release;
     const auto start = std::chrono::steady_clock::now();
-    result = cmaps::spherical_parameterization(mesh, options, callback);
-    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    auto result = compute(callback);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return std::make_pair(std::move(result), seconds);
   } catch (const cmaps::Cancelled&) {
     forward.rethrow_python_error();
     throw;
   }
+}
+
+py::tuple spherical_parameterization(const py::handle& vertices, const py::handle& triangles, std::uint64_t seed,
+                                     int effort, int threads, const py::object& progress) {
+  const cmaps::SphereOptions options = sphere_options(seed, effort, threads, progress);
+  const cmaps::TriangleMesh mesh = to_mesh(vertices, triangles);
+  const auto [result, seconds] = run_released(progress, [&](const cmaps::ProgressCallback& callback) {
+    return cmaps::spherical_parameterization(mesh, options, callback);
+  });
 
   py::dict stats;
   add_map_report(stats, result.report);
@@ -270,37 +294,10 @@ std::vector<int> to_features(const py::handle& data, std::size_t vertex_count) {
   return features;
 }
 
-py::tuple constrained_spherical_parameterization(const py::handle& vertices, const py::handle& triangles,
-                                                 const py::handle& features_data, const py::object& targets_data,
-                                                 std::uint64_t seed, int effort, int threads,
-                                                 const py::object& progress) {
-  const cmaps::SphereOptions options = sphere_options(seed, effort, threads, progress);
-  const cmaps::TriangleMesh mesh = to_mesh(vertices, triangles);
-  const std::vector<int> features = to_features(features_data, mesh.vertices.size());
-  std::vector<cmaps::Vec3> targets;
-  if (!targets_data.is_none()) {
-    targets = to_points(targets_data, "targets");
-    if (targets.size() != features.size())
-      raise(PyExc_ValueError, "targets has " + std::to_string(targets.size()) + " rows for " +
-                                  std::to_string(features.size()) + " features");
-  }
-  PythonProgress forward(progress);
-  const cmaps::ProgressCallback callback = [&forward](double fraction, const std::string& stage) {
-    return forward(fraction, stage);
-  };
-
-  cmaps::ConstrainedResult result;
-  double seconds = 0;
-  try {
-    py::gil_scoped_release release;
-    const auto start = std::chrono::steady_clock::now();
-    result = cmaps::constrained_spherical_parameterization(mesh, features, targets, options, callback);
-    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  } catch (const cmaps::Cancelled&) {
-    forward.rethrow_python_error();
-    throw;
-  }
-
+// A constrained map as Python sees it: (sphere, stats, extras). `seconds` is the
+// wall time of the computation it came from.
+py::tuple constrained_outputs(const cmaps::TriangleMesh& mesh, const cmaps::ConstrainedResult& result,
+                              double seconds) {
   py::dict stats;
   add_map_report(stats, result.report);
   stats["seconds"] = seconds;
@@ -327,13 +324,371 @@ py::tuple constrained_spherical_parameterization(const py::handle& vertices, con
     for (int k = 0; k < 3; ++k) sv(i, k) = result.steiner[i].vertices[k], sw(i, k) = result.steiner[i].weights[k];
     steiner_sphere[i] = result.steiner[i].sphere;
   }
+  const cmaps::ParameterizedSurface surface = cmaps::parameterized_surface(mesh, result);
   py::dict extras;
   extras["steiner_vertices"] = steiner_vertices;
   extras["steiner_weights"] = steiner_weights;
   extras["steiner_sphere"] = to_numpy(steiner_sphere);
   extras["triangles"] = to_numpy(result.triangles);
   extras["targets"] = to_numpy(result.targets);
+  extras["refined_vertices"] = to_numpy(surface.surface.vertices);
+  extras["refined_sphere"] = to_numpy(surface.sphere);
   return py::make_tuple(to_numpy(result.sphere), stats, extras);
+}
+
+py::tuple constrained_spherical_parameterization(const py::handle& vertices, const py::handle& triangles,
+                                                 const py::handle& features_data, const py::object& targets_data,
+                                                 std::uint64_t seed, int effort, int threads,
+                                                 const py::object& progress) {
+  const cmaps::SphereOptions options = sphere_options(seed, effort, threads, progress);
+  const cmaps::TriangleMesh mesh = to_mesh(vertices, triangles);
+  const std::vector<int> features = to_features(features_data, mesh.vertices.size());
+  std::vector<cmaps::Vec3> targets;
+  if (!targets_data.is_none()) {
+    targets = to_points(targets_data, "targets");
+    if (targets.size() != features.size())
+      raise(PyExc_ValueError, "targets has " + std::to_string(targets.size()) + " rows for " +
+                                  std::to_string(features.size()) + " features");
+  }
+  const auto [result, seconds] = run_released(progress, [&](const cmaps::ProgressCallback& callback) {
+    return cmaps::constrained_spherical_parameterization(mesh, features, targets, options, callback);
+  });
+  return constrained_outputs(mesh, result, seconds);
+}
+
+// ------------------------------------------------------------------ consistent sets
+
+// One member's features: per feature a vertex index in [0, vertex_count) or
+// -1 (the member lacks it), no vertex twice. `label` names the row in messages.
+std::vector<int> feature_row(const std::int64_t* data, py::ssize_t count, std::size_t vertex_count,
+                             const std::string& label) {
+  std::vector<int> row(count);
+  std::map<std::int64_t, py::ssize_t> seen;
+  for (py::ssize_t k = 0; k < count; ++k) {
+    const std::int64_t v = data[k];
+    if (v < -1 || v >= std::int64_t(vertex_count))
+      raise(invalid_mesh_error, label + "[" + std::to_string(k) + "] is vertex " + std::to_string(v) +
+                                    " but the mesh has " + std::to_string(vertex_count) +
+                                    " vertices (-1 marks a missing feature)");
+    if (v >= 0) {
+      const auto [it, inserted] = seen.emplace(v, k);
+      if (!inserted)
+        raise(invalid_mesh_error, label + "[" + std::to_string(it->second) + "] and " + label + "[" +
+                                      std::to_string(k) + "] are both vertex " + std::to_string(v));
+    }
+    row[k] = int(v);
+  }
+  return row;
+}
+
+using IntegerArray = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
+
+// Features with -1 for missing: an integer array-like of shape (k,) when
+// `rows` is 0, else (rows, k). Empty lists (float64 to numpy) are allowed.
+IntegerArray to_feature_array(const py::handle& data, py::ssize_t rows) {
+  const py::array array = as_array(data, "features");
+  const std::string expected = rows ? "(" + std::to_string(rows) + ", k), one row per mesh" : std::string("(k,)");
+  const bool shaped = rows ? array.ndim() == 2 && array.shape(0) == rows : array.ndim() == 1;
+  if (!shaped) raise(PyExc_ValueError, "features must have shape " + expected + ", got " + shape_of(array));
+  if (array.size() == 0)
+    return rows ? IntegerArray(std::vector<py::ssize_t>{rows, 0}) : IntegerArray(std::vector<py::ssize_t>{0});
+  return to_integers(array, "features");
+}
+
+// A sequence of (vertices, triangles) pairs, each a closed genus-0 mesh.
+std::vector<cmaps::TriangleMesh> to_meshes(const py::handle& meshes) {
+  if (!py::isinstance<py::sequence>(meshes) || py::isinstance<py::str>(meshes))
+    raise(PyExc_TypeError, "meshes must be a sequence of (vertices, triangles) pairs");
+  const auto items = py::reinterpret_borrow<py::sequence>(meshes);
+  std::vector<cmaps::TriangleMesh> result;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const py::object item = items[i];
+    if (!py::isinstance<py::sequence>(item) || py::len(item) != 2)
+      raise(PyExc_TypeError, "meshes[" + std::to_string(i) + "] must be a (vertices, triangles) pair");
+    result.push_back(to_mesh(item[py::int_(0)], item[py::int_(1)]));
+    try {
+      cmaps::require_sphere_topology(result.back());
+    } catch (const cmaps::InvalidInput& e) {
+      raise(invalid_mesh_error, "meshes[" + std::to_string(i) + "]: " + e.what());
+    }
+  }
+  return result;
+}
+
+void require_grid_resolution(int n, const char* name) {
+  if (n < 2 || n % 2 != 0)
+    raise(PyExc_ValueError, std::string(name) + " must be even and at least 2, got " + std::to_string(n));
+}
+
+py::dict consistent_spherical_parameterization(const py::handle& meshes_data, const py::handle& features_data,
+                                               int first, int grid, std::uint64_t seed, int effort, int threads,
+                                               const py::object& progress) {
+  cmaps::ConsistentOptions options;
+  options.sphere = sphere_options(seed, effort, threads, progress);
+  options.grid = grid;
+  options.first = first;
+  require_grid_resolution(grid, "grid");
+  std::vector<cmaps::TriangleMesh> meshes = to_meshes(meshes_data);
+  if (meshes.size() < 2)
+    raise(PyExc_ValueError, "a consistent set needs at least 2 meshes, got " + std::to_string(meshes.size()));
+  if (first < -1 || first >= int(meshes.size()))
+    raise(PyExc_ValueError, "first must be -1 (automatic) or a mesh index below " + std::to_string(meshes.size()) +
+                                ", got " + std::to_string(first));
+  const IntegerArray table = to_feature_array(features_data, py::ssize_t(meshes.size()));
+  std::vector<cmaps::ConsistentMember> members;
+  for (std::size_t i = 0; i < meshes.size(); ++i) {
+    std::vector<int> row = feature_row(table.data() + i * table.shape(1), table.shape(1), meshes[i].vertices.size(),
+                                       "features[" + std::to_string(i) + "]");
+    members.push_back({std::move(meshes[i]), std::move(row)});
+  }
+
+  const auto [result, seconds] = run_released(progress, [&](const cmaps::ProgressCallback& callback) {
+    return cmaps::consistent_spherical_parameterization(members, options, callback);
+  });
+  py::list maps;
+  for (std::size_t i = 0; i < members.size(); ++i) {
+    const cmaps::ConstrainedResult& map = result.members[i];
+    maps.append(constrained_outputs(members[i].mesh, map,
+                                    map.seconds_paths + map.seconds_simplify + map.seconds_optimize));
+  }
+  py::dict d;
+  d["feature_locations"] = to_numpy(result.feature_locations);
+  d["initial_locations"] = to_numpy(result.initial_locations);
+  d["first"] = result.first;
+  d["seconds"] = seconds;
+  d["members"] = maps;
+  return d;
+}
+
+py::tuple parameterize_to_locations(const py::handle& vertices, const py::handle& triangles,
+                                    const py::handle& features_data, const py::handle& locations_data,
+                                    std::uint64_t seed, int effort, int threads, const py::object& progress) {
+  const cmaps::SphereOptions options = sphere_options(seed, effort, threads, progress);
+  cmaps::ConsistentMember member{to_mesh(vertices, triangles), {}};
+  const IntegerArray features = to_feature_array(features_data, 0);
+  member.features = feature_row(features.data(), features.shape(0), member.mesh.vertices.size(), "features");
+  const std::vector<cmaps::Vec3> locations = to_points(locations_data, "locations");
+  if (locations.size() != member.features.size())
+    raise(PyExc_ValueError, "locations has " + std::to_string(locations.size()) + " rows for " +
+                                std::to_string(member.features.size()) + " features");
+  const auto [result, seconds] = run_released(progress, [&](const cmaps::ProgressCallback& callback) {
+    return cmaps::parameterize_to_locations(member, locations, options, callback);
+  });
+  return constrained_outputs(member.mesh, result, seconds);
+}
+
+// Per member (vertices, triangles, sphere): a parameterized surface.
+struct Surface {
+  cmaps::TriangleMesh mesh;
+  std::vector<cmaps::Vec3> sphere;
+};
+
+py::dict consistent_remesh(const py::handle& surfaces_data, const py::handle& locations_data, int n, int threads) {
+  require_grid_resolution(n, "n");
+  if (threads < 1) raise(PyExc_ValueError, "threads must be at least 1, got " + std::to_string(threads));
+  if (!py::isinstance<py::sequence>(surfaces_data) || py::isinstance<py::str>(surfaces_data))
+    raise(PyExc_TypeError, "surfaces must be a sequence of (vertices, triangles, sphere) triples");
+  const auto items = py::reinterpret_borrow<py::sequence>(surfaces_data);
+  std::vector<Surface> surfaces;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const py::object item = items[i];
+    if (!py::isinstance<py::sequence>(item) || py::len(item) != 3)
+      raise(PyExc_TypeError, "surfaces[" + std::to_string(i) + "] must be a (vertices, triangles, sphere) triple");
+    Surface s{to_mesh(item[py::int_(0)], item[py::int_(1)]), to_points(item[py::int_(2)], "sphere")};
+    if (s.sphere.size() != s.mesh.vertices.size())
+      raise(PyExc_ValueError, "surfaces[" + std::to_string(i) + "]: sphere has " + std::to_string(s.sphere.size()) +
+                                  " rows for " + std::to_string(s.mesh.vertices.size()) + " vertices");
+    surfaces.push_back(std::move(s));
+  }
+  const std::vector<cmaps::Vec3> locations = to_points(locations_data, "feature_locations");
+
+  cmaps::OctahedralGrid grid;
+  std::vector<int> feature_vertices;
+  std::vector<std::vector<cmaps::Vec3>> positions;
+  {
+    py::gil_scoped_release release;
+    grid = cmaps::octahedral_grid(n);
+    feature_vertices = cmaps::snap_features(grid.sphere, locations);
+    for (const Surface& s : surfaces) positions.push_back(cmaps::resample(s.mesh, s.sphere, grid.sphere, threads));
+  }
+  const py::ssize_t v = py::ssize_t(grid.sphere.size());
+  py::array_t<double> stacked({py::ssize_t(surfaces.size()), v, py::ssize_t(3)});
+  double* out = stacked.mutable_data();
+  for (const auto& p : positions)
+    for (const cmaps::Vec3& x : p) out[0] = x.x(), out[1] = x.y(), out[2] = x.z(), out += 3;
+  py::dict d;
+  d["sphere"] = to_numpy(grid.sphere);
+  d["triangles"] = to_numpy(grid.triangles);
+  d["positions"] = stacked;
+  d["feature_vertices"] = py::array_t<std::int32_t>(py::ssize_t(feature_vertices.size()), feature_vertices.data());
+  return d;
+}
+
+// ------------------------------------------------------------------ grids and geometry images
+
+py::array_t<std::int32_t> pixel_array(const cmaps::OctahedralGrid& grid) {
+  const py::ssize_t side = grid.n + 1;
+  py::array_t<std::int32_t> pixels({side, side});
+  std::copy(grid.pixel_vertex.begin(), grid.pixel_vertex.end(), pixels.mutable_data());
+  return pixels;
+}
+
+py::tuple octahedral_grid(int n) {
+  require_grid_resolution(n, "n");
+  cmaps::OctahedralGrid grid;
+  {
+    py::gil_scoped_release release;
+    grid = cmaps::octahedral_grid(n);
+  }
+  return py::make_tuple(to_numpy(grid.sphere), to_numpy(grid.triangles), pixel_array(grid));
+}
+
+cmaps::GeometryImage to_image(const py::handle& data) {
+  py::array array = as_array(data, "image");
+  const char kind = array.dtype().kind();
+  if (kind != 'f' && kind != 'i' && kind != 'u')
+    raise(PyExc_TypeError, "image must hold real numbers, got dtype " + std::string(py::str(array.dtype())));
+  if (array.ndim() != 3 || array.shape(0) != array.shape(1) || array.shape(2) != 3 || array.shape(0) < 3 ||
+      (array.shape(0) - 1) % 2 != 0)
+    raise(PyExc_ValueError, "image must have shape (n+1, n+1, 3) with n even and at least 2, got " + shape_of(array));
+  const auto values = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(array);
+  cmaps::GeometryImage image;
+  image.n = int(array.shape(0) - 1);
+  image.pixels.resize(std::size_t(values.size() / 3));
+  const double* v = values.data();
+  for (cmaps::Vec3& p : image.pixels) p = {v[0], v[1], v[2]}, v += 3;
+  return image;
+}
+
+py::array_t<double> image_array(const cmaps::GeometryImage& image) {
+  const py::ssize_t side = image.n + 1;
+  py::array_t<double> array({side, side, py::ssize_t(3)});
+  double* out = array.mutable_data();
+  for (const cmaps::Vec3& p : image.pixels) out[0] = p.x(), out[1] = p.y(), out[2] = p.z(), out += 3;
+  return array;
+}
+
+// ".npy" or ".png" (any case): the geometry image format of a path.
+bool is_png(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".npy" && ext != ".png")
+    raise(PyExc_ValueError, "geometry image path '" + path.string() + "' must end in .npy or .png");
+  return ext == ".png";
+}
+
+void write_geometry_image(const std::filesystem::path& path, const py::handle& data) {
+  const bool png = is_png(path);
+  const cmaps::GeometryImage image = to_image(data);
+  py::gil_scoped_release release;
+  if (png) cmaps::write_geometry_image_png(path.string(), image);
+  else cmaps::write_geometry_image_npy(path.string(), image);
+}
+
+py::array_t<double> read_geometry_image(const std::filesystem::path& path) {
+  const bool png = is_png(path);
+  if (!std::filesystem::exists(path)) raise(PyExc_FileNotFoundError, "cannot read '" + path.string() + "': no such file");
+  cmaps::GeometryImage image;
+  {
+    py::gil_scoped_release release;
+    image = png ? cmaps::read_geometry_image_png(path.string()) : cmaps::read_geometry_image_npy(path.string());
+  }
+  return image_array(image);
+}
+
+py::tuple geometry_image_mesh(const py::handle& data) {
+  const cmaps::GeometryImage image = to_image(data);
+  cmaps::TriangleMesh mesh;
+  {
+    py::gil_scoped_release release;
+    mesh = cmaps::geometry_image_mesh(image);
+  }
+  return py::make_tuple(to_numpy(mesh.vertices), to_numpy(mesh.triangles));
+}
+
+py::array_t<double> vertex_normals(const py::handle& vertices, const py::handle& triangles) {
+  const cmaps::TriangleMesh mesh = to_mesh(vertices, triangles);
+  std::vector<cmaps::Vec3> normals;
+  {
+    py::gil_scoped_release release;
+    normals = cmaps::vertex_normals(mesh);
+  }
+  return to_numpy(normals);
+}
+
+// ------------------------------------------------------------------ point location
+
+std::unique_ptr<cmaps::SphereLocator> new_locator(const py::handle& sphere_data, const py::handle& triangles_data) {
+  std::vector<cmaps::Vec3> sphere = to_points(sphere_data, "sphere");
+  std::vector<cmaps::Triangle> triangles = to_triangles(triangles_data, sphere.size());
+  py::gil_scoped_release release;
+  return std::make_unique<cmaps::SphereLocator>(std::move(sphere), std::move(triangles));
+}
+
+py::tuple locate(const cmaps::SphereLocator& locator, const py::handle& directions_data, int threads) {
+  if (threads < 1) raise(PyExc_ValueError, "threads must be at least 1, got " + std::to_string(threads));
+  const std::vector<cmaps::Vec3> directions = to_points(directions_data, "directions");
+  std::vector<cmaps::SphereLocation> at;
+  {
+    py::gil_scoped_release release;
+    at = locator.locate_all(directions, threads);
+  }
+  const py::ssize_t m = py::ssize_t(at.size());
+  py::array_t<std::int32_t> triangles(m);
+  py::array_t<double> barycentric({m, py::ssize_t(3)});
+  std::int32_t* t = triangles.mutable_data();
+  double* b = barycentric.mutable_data();
+  for (const cmaps::SphereLocation& l : at) {
+    *t++ = l.triangle;
+    for (double x : l.barycentric) *b++ = x;
+  }
+  return py::make_tuple(triangles, barycentric);
+}
+
+py::array_t<double> interpolate(const cmaps::SphereLocator& locator, const py::handle& values_data,
+                                const py::handle& triangles_data, const py::handle& barycentric_data, int threads) {
+  if (threads < 1) raise(PyExc_ValueError, "threads must be at least 1, got " + std::to_string(threads));
+  const py::array values_array = as_array(values_data, "values");
+  const char kind = values_array.dtype().kind();
+  if (kind != 'f' && kind != 'i' && kind != 'u' && kind != 'b')
+    raise(PyExc_TypeError, "values must hold real numbers, got dtype " + std::string(py::str(values_array.dtype())));
+  if (values_array.ndim() != 1 && values_array.ndim() != 2)
+    raise(PyExc_ValueError, "values must have shape (n,) or (n, d), got " + shape_of(values_array));
+  if (std::size_t(values_array.shape(0)) != locator.sphere().size())
+    raise(PyExc_ValueError, "values has " + std::to_string(values_array.shape(0)) + " rows but the locator has " +
+                                std::to_string(locator.sphere().size()) + " vertices");
+  const auto values = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(values_array);
+  const int stride = values.ndim() == 2 ? int(values.shape(1)) : 1;
+
+  const IntegerArray triangles = to_integers(triangles_data, "triangles");
+  if (triangles.ndim() != 1) raise(PyExc_ValueError, "triangles must have shape (m,), got " + shape_of(triangles));
+  const py::array barycentric_array = as_array(barycentric_data, "barycentric");
+  if (barycentric_array.ndim() != 2 || barycentric_array.shape(1) != 3 ||
+      barycentric_array.shape(0) != triangles.shape(0))
+    raise(PyExc_ValueError, "barycentric must have shape (" + std::to_string(triangles.shape(0)) + ", 3), got " +
+                                shape_of(barycentric_array));
+  const auto barycentric = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(barycentric_array);
+  const std::int64_t count = std::int64_t(locator.triangles().size());
+  std::vector<cmaps::SphereLocation> at(std::size_t(triangles.shape(0)));
+  const std::int64_t* t = triangles.data();
+  const double* b = barycentric.data();
+  for (std::size_t i = 0; i < at.size(); ++i, ++t, b += 3) {
+    if (*t < 0 || *t >= count)
+      raise(PyExc_IndexError, "triangles[" + std::to_string(i) + "] is " + std::to_string(*t) + " but the locator has " +
+                                  std::to_string(count) + " triangles");
+    at[i].triangle = int(*t);
+    at[i].barycentric = {b[0], b[1], b[2]};
+  }
+  const std::vector<double> flat(values.data(), values.data() + values.size());
+  std::vector<double> result;
+  {
+    py::gil_scoped_release release;
+    result = locator.interpolate(flat, stride, at, threads);
+  }
+  py::array_t<double> out = values.ndim() == 2 ? py::array_t<double>({py::ssize_t(at.size()), py::ssize_t(stride)})
+                                                : py::array_t<double>(py::ssize_t(at.size()));
+  std::copy(result.begin(), result.end(), out.mutable_data());
+  return out;
 }
 
 py::dict measure_spherical_map(const py::handle& vertices, const py::handle& triangles, const py::handle& sphere) {
@@ -409,6 +764,68 @@ PYBIND11_MODULE(_native, m) {
         "(unused slots are -1 with weight 0) and mapped to extras['steiner_sphere'][i]; extras['targets'] is\n"
         "(k, 3), the targets used. Raises InvalidMeshError for unsupported input or bad features/targets,\n"
         "Cancelled when progress returns False.");
+  m.def("consistent_spherical_parameterization", &consistent_spherical_parameterization, py::arg("meshes"),
+        py::arg("features"), py::kw_only(), py::arg("first") = -1, py::arg("grid") = 64, py::arg("seed") = 1,
+        py::arg("effort") = 1, py::arg("threads") = 2, py::arg("progress") = py::none(),
+        "Consistent spherical parameterization of a set (thesis 3.2): every feature lands on one common\n"
+        "point of the sphere on every member. meshes: sequence of (vertices, triangles), closed genus 0.\n"
+        "features: (members, k) integer vertex indices, -1 where a member lacks the feature; every member\n"
+        "needs at least 3 and one member all of them. first: member seeding the locations (-1: the first\n"
+        "with every feature); grid: even resolution of the intermediate octahedral remeshes. Returns a dict:\n"
+        "'feature_locations' (k, 3) common unit vectors, 'initial_locations' (k, 3) from the first member\n"
+        "alone, 'first', 'seconds', and 'members': per member (sphere, stats, extras) as returned by\n"
+        "constrained_spherical_parameterization (extras['refined_vertices'], extras['triangles'] and\n"
+        "extras['refined_sphere'] are the map as a parameterized surface, Steiner vertices included).\n"
+        "Raises InvalidMeshError naming the member for bad meshes or features, Cancelled when progress\n"
+        "returns False.");
+  m.def("parameterize_to_locations", &parameterize_to_locations, py::arg("vertices"), py::arg("triangles"),
+        py::arg("features"), py::arg("locations"), py::kw_only(), py::arg("seed") = 1, py::arg("effort") = 1,
+        py::arg("threads") = 2, py::arg("progress") = py::none(),
+        "Adds a member to an existing set (thesis 4.2): the constrained map of the mesh with feature i at\n"
+        "locations[i]. features: (k,) vertex indices, -1 where the mesh lacks the feature (left free; at\n"
+        "least 3 present); locations: (k, 3), e.g. a set's 'feature_locations'. Returns (sphere, stats, extras)\n"
+        "like constrained_spherical_parameterization.");
+  m.def("consistent_remesh", &consistent_remesh, py::arg("surfaces"), py::arg("feature_locations"), py::arg("n"),
+        py::kw_only(), py::arg("threads") = 2,
+        "Consistent remeshes: every parameterized surface sampled at the vertices of the octahedral grid of\n"
+        "resolution n (even), the grid vertex nearest each feature location moved onto it. surfaces: per member\n"
+        "(vertices, triangles, sphere), e.g. (extras['refined_vertices'], extras['triangles'],\n"
+        "extras['refined_sphere']) of a consistent set's member. Returns a dict: 'sphere' (V, 3) the sample\n"
+        "points, 'triangles' (2 n^2, 3) int32 their shared connectivity, 'positions' (members, V, 3) and\n"
+        "'feature_vertices' (k,) int32: feature i is vertex feature_vertices[i] of every remesh.");
+  m.def("octahedral_grid", &octahedral_grid, py::arg("n"),
+        "Praun & Hoppe's flat-octahedron sphere grid of even resolution n: (sphere (n^2 + 2, 3) unit vectors,\n"
+        "triangles (2 n^2, 3) int32 counter-clockwise from outside, pixel_vertex (n+1, n+1) int32: the vertex\n"
+        "of each geometry-image pixel). values[pixel_vertex] is the geometry image of per-vertex values.");
+  m.def("write_geometry_image", &write_geometry_image, py::arg("path"), py::arg("image"),
+        "Writes an (n+1, n+1, 3) geometry image as float64 .npy or as 16-bit RGB .png quantized to the\n"
+        "values' bounding box (kept in the file so it reads back to geometry). Raises MeshIOError.");
+  m.def("read_geometry_image", &read_geometry_image, py::arg("path"),
+        "Reads a geometry image (.npy float64/float32, or .png as written above) as (n+1, n+1, 3) float64.");
+  m.def("geometry_image_mesh", &geometry_image_mesh, py::arg("image"),
+        "The mesh of an (n+1, n+1, 3) geometry image: (vertices (n^2 + 2, 3), triangles (2 n^2, 3) int32), the\n"
+        "octahedral grid's connectivity.");
+  m.def("vertex_normals", &vertex_normals, py::arg("vertices"), py::arg("triangles"),
+        "Unit area-weighted vertex normals (n, 3); zero for a vertex with only zero-area triangles.");
+
+  py::class_<cmaps::SphereLocator>(m, "SphereLocator",
+                                   "Point location on a spherical parameterization (millions of queries per second\n"
+                                   "per core): which triangle's cone holds a direction, with barycentric coordinates\n"
+                                   "that interpolate per-vertex values (positions, normals, UVs, colours).")
+      .def(py::init(&new_locator), py::arg("sphere"), py::arg("triangles"),
+           "sphere: (n, 3) unit vectors, triangles: (m, 3) positively oriented, covering the sphere once\n"
+           "(e.g. a member's extras['refined_sphere'] and extras['triangles']). Raises InvalidMeshError.")
+      .def("locate", &locate, py::arg("directions"), py::kw_only(), py::arg("threads") = 2,
+           "directions: (m, 3) non-zero (need not be unit). Returns (triangles (m,) int32, barycentric (m, 3)\n"
+           "float64, each row >= 0 summing to 1 in the triangle's corner order). Releases the GIL.")
+      .def("interpolate", &interpolate, py::arg("values"), py::arg("triangles"), py::arg("barycentric"),
+           py::kw_only(), py::arg("threads") = 2,
+           "values: (n,) or (n, d), one row per locator vertex; triangles, barycentric as from locate().\n"
+           "Returns (m,) or (m, d) float64: row i is sum_j barycentric[i, j] * values[corner j of triangles[i]].\n"
+           "Releases the GIL.")
+      .def_property_readonly("sphere", [](const cmaps::SphereLocator& l) { return to_numpy(l.sphere()); })
+      .def_property_readonly("triangles", [](const cmaps::SphereLocator& l) { return to_numpy(l.triangles()); });
+
   m.def("measure_spherical_map", &measure_spherical_map, py::arg("vertices"), py::arg("triangles"),
         py::arg("sphere"), "Stretch and bijectivity measures of a map of the mesh onto the unit sphere.");
 }
