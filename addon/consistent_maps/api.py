@@ -15,9 +15,6 @@ from dataclasses import dataclass
 from . import features as _features
 from . import meshdata, native, preview, results
 
-EFFORTS = (0, 1, 2)
-
-
 class ComputeError(ValueError):
     """The objects cannot be computed (or the result not stored); the message says what to fix."""
 

@@ -10,7 +10,6 @@ from . import _native
 
 InvalidMeshError = _native.InvalidMeshError
 Cancelled = _native.Cancelled
-VERSION = _native.__version__
 
 
 def check_mesh(vertices, triangles):

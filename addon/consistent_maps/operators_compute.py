@@ -103,6 +103,14 @@ class CM_OT_compute(bpy.types.Operator):
             return self._finish(e)
 
 
+    def cancel(self, context):
+        """Blender ends the operator from outside (a file is loaded, the window closes): drop the run."""
+        context.window_manager.event_timer_remove(self._timer)
+        if job.current() is self._job:
+            self._job.cancel()
+            job.finish()
+
+
 class CM_OT_cancel(bpy.types.Operator):
     """Stop the running computation; nothing is changed"""
     bl_idname = "consistent_maps.cancel"

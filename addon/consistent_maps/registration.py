@@ -2,7 +2,7 @@
 import bpy
 from bpy.app.handlers import persistent
 
-from . import (features, operators_compute, operators_features, operators_preview, operators_set, overlay,
+from . import (features, job, operators_compute, operators_features, operators_preview, operators_set, overlay,
                panels, properties)
 
 CLASSES = (
@@ -20,6 +20,14 @@ def _forget_cached_features(*_args):
     features.invalidate()
 
 
+@persistent
+def _drop_running_job(*_args):
+    """Loading a file ends the Compute operator: stop its computation, whose objects are gone."""
+    if job.current() is not None:
+        job.current().cancel()
+        job.finish()
+
+
 HANDLERS = (bpy.app.handlers.depsgraph_update_post, bpy.app.handlers.load_post, bpy.app.handlers.undo_post,
             bpy.app.handlers.redo_post)
 
@@ -30,11 +38,15 @@ def register():
     properties.attach()
     for handlers in HANDLERS:
         handlers.append(_forget_cached_features)
+    bpy.app.handlers.load_pre.append(_drop_running_job)
     overlay.install()
 
 
 def unregister():
     overlay.uninstall()
+    _drop_running_job()
+    if _drop_running_job in bpy.app.handlers.load_pre:
+        bpy.app.handlers.load_pre.remove(_drop_running_job)
     for handlers in HANDLERS:
         if _forget_cached_features in handlers:
             handlers.remove(_forget_cached_features)

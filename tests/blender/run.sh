@@ -58,7 +58,7 @@ run_gui() {
   "$BLENDER" -b --factory-startup --python-expr "import bpy; bpy.ops.wm.save_as_mainfile(filepath='$empty')" \
     >/dev/null 2>&1 || return 1
   output=$(timeout 300 xvfb-run -a -s "-screen 0 1300x1300x24" \
-           "$BLENDER" --factory-startup "$empty" -P tests/blender/gui_check.py 2>&1)
+           "$BLENDER" --factory-startup --python-exit-code 1 "$empty" -P tests/blender/gui_check.py 2>&1)
   local code=$?
   rm -rf "$(dirname "$empty")"
   grep -Ev "$NOISE" <<<"$output" | grep -E "GUI CHECK|Traceback|Error" || true

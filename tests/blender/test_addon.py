@@ -472,6 +472,15 @@ def test_cancel_operator_stops_the_job_and_changes_nothing():
     assert snapshot(spot) == before
 
 
+def test_loading_a_file_drops_a_running_job():
+    spot = load(SPOT, "Spot")
+    running = job.start(api.prepare([spot]), {"effort": 2, "threads": 1})
+    bpy.ops.wm.read_homefile(use_empty=True)
+    assert job.current() is None and bpy.ops.consistent_maps.compute.poll()
+    while not running.done:
+        time.sleep(0.01)
+
+
 def test_cancel_through_progress_callback():
     a = load(BALL, "A")
     before = snapshot(a)
