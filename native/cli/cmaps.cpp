@@ -1,6 +1,7 @@
-// The `cmaps` command-line tool: check a mesh, or compute its spherical
-// parameterization, unconstrained or with feature vertices at given points. Every failure ends as exit code 1 (2 for usage errors)
-// with one line "cmaps: error: ..." on stderr, and with --json also as one
+// The `cmaps` command-line tool: check a mesh, compute its spherical
+// parameterization (unconstrained or with feature vertices at given points),
+// or the consistent parameterization of a set with its remeshes and geometry
+// images. Every failure ends as exit code 1 (2 for usage errors) with one line "cmaps: error: ..." on stderr, and with --json also as one
 // JSON object carrying "error" on stdout.
 #include <unistd.h>
 
@@ -635,9 +636,9 @@ void run_consistent(const Arguments& args, Outcome& out) {
       const cmaps::GeometryImage geometry = cmaps::geometry_image(grid, mesh.vertices);
       const cmaps::GeometryImage normals = cmaps::geometry_image(grid, cmaps::vertex_normals(mesh));
       mesh_output(k + ".remesh.obj", std::move(mesh));
-      output(k + ".geometry.npy", [geometry](const std::string& path) { cmaps::write_geometry_image_npy(path, geometry); });
-      output(k + ".geometry.png", [geometry](const std::string& path) { cmaps::write_geometry_image_png(path, geometry); });
-      output(k + ".normals.npy", [normals](const std::string& path) { cmaps::write_geometry_image_npy(path, normals); });
+      output(k + ".geometry.npy", [geometry](const std::string& p) { cmaps::write_geometry_image_npy(p, geometry); });
+      output(k + ".geometry.png", [geometry](const std::string& p) { cmaps::write_geometry_image_png(p, geometry); });
+      output(k + ".normals.npy", [normals](const std::string& p) { cmaps::write_geometry_image_npy(p, normals); });
     }
     JsonObject vertices;
     for (std::size_t k = 0; k < set.names.size(); ++k) vertices.add(set.names[k], remesh->feature_vertices[k]);

@@ -587,7 +587,8 @@ void write_geometry_image(const std::filesystem::path& path, const py::handle& d
 
 py::array_t<double> read_geometry_image(const std::filesystem::path& path) {
   const bool png = is_png(path);
-  if (!std::filesystem::exists(path)) raise(PyExc_FileNotFoundError, "cannot read '" + path.string() + "': no such file");
+  if (!std::filesystem::exists(path))
+    raise(PyExc_FileNotFoundError, "cannot read '" + path.string() + "': no such file");
   cmaps::GeometryImage image;
   {
     py::gil_scoped_release release;
@@ -674,8 +675,8 @@ py::array_t<double> interpolate(const cmaps::SphereLocator& locator, const py::h
   const double* b = barycentric.data();
   for (std::size_t i = 0; i < at.size(); ++i, ++t, b += 3) {
     if (*t < 0 || *t >= count)
-      raise(PyExc_IndexError, "triangles[" + std::to_string(i) + "] is " + std::to_string(*t) + " but the locator has " +
-                                  std::to_string(count) + " triangles");
+      raise(PyExc_IndexError, "triangles[" + std::to_string(i) + "] is " + std::to_string(*t) +
+                                  " but the locator has " + std::to_string(count) + " triangles");
     at[i].triangle = int(*t);
     at[i].barycentric = {b[0], b[1], b[2]};
   }

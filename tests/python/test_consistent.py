@@ -275,7 +275,8 @@ def test_cli_json(cli, meshes, result):
     assert np.abs(locations - result["feature_locations"]).max() < 1e-9
     expected = [f"{k}.{kind}" for k in range(m) for kind in ("sphere.obj", "refined_sphere.obj", "refined.obj")]
     expected += ["features.json", "remesh_features.json"]
-    expected += [f"{k}.{kind}" for k in range(m) for kind in ("remesh.obj", "geometry.npy", "geometry.png", "normals.npy")]
+    remeshed = ("remesh.obj", "geometry.npy", "geometry.png", "normals.npy")
+    expected += [f"{k}.{kind}" for k in range(m) for kind in remeshed]
     assert sorted(p.split("/")[-1] for p in report["outputs"]) == sorted(expected)
     assert sorted(p.name for p in out.iterdir()) == sorted(expected)
 
