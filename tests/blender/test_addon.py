@@ -586,9 +586,23 @@ def _colour_by_position(obj):
     obj.data.attributes.active_color = obj.data.attributes["where"]
 
 
+def _marker(position, rgba, name):
+    """A small ball at a feature, in the feature's overlay colour (the overlay itself is not rendered)."""
+    bm = bmesh.new()
+    bmesh.ops.create_icosphere(bm, subdivisions=2, radius=0.05)
+    mesh = bpy.data.meshes.new(f"marker {name}")
+    bm.to_mesh(mesh)
+    bm.free()
+    mesh.attributes.new("where", 'FLOAT_COLOR', 'POINT').data.foreach_set("color", list(rgba) * len(mesh.vertices))
+    mesh.attributes.active_color = mesh.attributes["where"]
+    obj = bpy.data.objects.new(f"marker {name}", mesh)
+    obj.location = position
+    bpy.context.scene.collection.objects.link(obj)
+
+
 def test_render_sphere_preview():
-    """Workbench render of Spot next to its sphere preview, both coloured by the original position:
-    out/blender/sphere_preview-<version>.png."""
+    """Workbench render of Spot next to its sphere preview, both coloured by the original position,
+    features as balls in their overlay colours: out/blender/sphere_preview-<version>.png."""
     spot = with_features(load(SPOT, "Spot", location=(-1.1, 0, 0)))
     ball = with_features(load(SPOT, "Spot sphere", location=(1.1, 0, 0)))
     for obj in (spot, ball):
@@ -597,6 +611,9 @@ def test_render_sphere_preview():
     make_set([spot, ball])
     api.compute([spot, ball], effort=0)
     api.show_sphere(ball)
+    bpy.context.view_layer.update()
+    for point in overlay.feature_points(bpy.context):
+        _marker(*point)
     scene = bpy.context.scene
     camera = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
     scene.collection.objects.link(camera)
