@@ -29,7 +29,8 @@ class CM_OT_add_feature(bpy.types.Operator):
     bl_label = "Add Feature"
     bl_options = {'REGISTER', 'UNDO'}
 
-    name: StringProperty(name="Name", description="Feature name; the same name on other objects corresponds")
+    name: StringProperty(name="Name", description="Feature name; the same name on other objects corresponds",
+                         options={'SKIP_SAVE'})  # each use proposes the next free name, not the last one
 
     @classmethod
     def poll(cls, context):
@@ -64,8 +65,9 @@ class CM_OT_rename_feature(bpy.types.Operator):
     bl_label = "Rename Feature"
     bl_options = {'REGISTER', 'UNDO'}
 
-    name: StringProperty(name="Feature", description="Current name (default: the active feature)")
-    new_name: StringProperty(name="New Name")
+    name: StringProperty(name="Feature", description="Current name (default: the active feature)",
+                         options={'SKIP_SAVE'})
+    new_name: StringProperty(name="New Name", options={'SKIP_SAVE'})
 
     poll = classmethod(lambda cls, context: _has_mesh(context))
 
@@ -91,8 +93,9 @@ class CM_OT_delete_feature(bpy.types.Operator):
     bl_label = "Delete Feature"
     bl_options = {'REGISTER', 'UNDO'}
 
-    name: StringProperty(name="Feature", description="Name (default: the active feature)")
-    everywhere: BoolProperty(name="Whole Set", description="Delete it from every object of the set")
+    name: StringProperty(name="Feature", description="Name (default: the active feature)", options={'SKIP_SAVE'})
+    everywhere: BoolProperty(name="Whole Set", description="Delete it from every object of the set",
+                             options={'SKIP_SAVE'})
 
     poll = classmethod(lambda cls, context: _has_mesh(context))
 
@@ -112,7 +115,7 @@ class CM_OT_select_feature(bpy.types.Operator):
     bl_label = "Select Feature"
     bl_options = {'REGISTER', 'UNDO'}
 
-    name: StringProperty(name="Feature", description="Name (default: the active feature)")
+    name: StringProperty(name="Feature", description="Name (default: the active feature)", options={'SKIP_SAVE'})
 
     poll = classmethod(lambda cls, context: _has_mesh(context))
 

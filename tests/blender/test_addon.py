@@ -207,6 +207,13 @@ def test_every_operator_is_undoable():
             assert 'UNDO' in cls.bl_options, cls.bl_idname
 
 
+def test_feature_names_are_not_remembered_between_uses():
+    """Blender remembers operator properties; a remembered name would move the last feature."""
+    for op in ("add_feature", "rename_feature", "delete_feature", "select_feature"):
+        properties = getattr(bpy.ops.consistent_maps, op).get_rna_type().properties
+        assert properties["name"].is_skip_save, op
+
+
 def test_overlay_is_not_installed_in_background():
     assert bpy.app.background and overlay._handles == []
 
