@@ -13,22 +13,13 @@
 namespace cmaps {
 namespace {
 
+using test::farthest_points;
 using test::shared_mesh;
 
 // Issue 4 aims at 2 %; measured 2.5-2.8 % with 8 features (BENCHMARKS.md).
 // A map that ignored the correspondence would be off by 20 % or more.
 constexpr double kGroundTruthTolerance = 0.03;
 
-std::vector<int> farthest_points(const TriangleMesh& mesh, int count) {
-  std::vector<int> chosen{0};
-  std::vector<double> distance(mesh.vertices.size(), std::numeric_limits<double>::infinity());
-  while (static_cast<int>(chosen.size()) < count) {
-    for (size_t v = 0; v < distance.size(); ++v)
-      distance[v] = std::min(distance[v], (mesh.vertices[v] - mesh.vertices[chosen.back()]).squaredNorm());
-    chosen.push_back(static_cast<int>(std::max_element(distance.begin(), distance.end()) - distance.begin()));
-  }
-  return chosen;
-}
 
 double diagonal(const TriangleMesh& mesh) {
   Vec3 lo = mesh.vertices.front(), hi = lo;

@@ -14,19 +14,10 @@
 namespace cmaps {
 namespace {
 
+using test::farthest_points;
 using test::shared_mesh;
 
 // Well-spread features: farthest-point sampling by Euclidean distance.
-std::vector<int> farthest_points(const TriangleMesh& mesh, int count) {
-  std::vector<int> chosen{0};
-  std::vector<double> distance(mesh.vertices.size(), std::numeric_limits<double>::infinity());
-  while (static_cast<int>(chosen.size()) < count) {
-    for (size_t v = 0; v < distance.size(); ++v)
-      distance[v] = std::min(distance[v], (mesh.vertices[v] - mesh.vertices[chosen.back()]).squaredNorm());
-    chosen.push_back(static_cast<int>(std::max_element(distance.begin(), distance.end()) - distance.begin()));
-  }
-  return chosen;
-}
 
 std::vector<int> random_features(const TriangleMesh& mesh, int count, unsigned seed) {
   std::mt19937 rng(seed);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <limits>
 #include <string>
 
 #include "consistent_maps/mesh.h"
@@ -44,6 +45,18 @@ inline TriangleMesh octahedron() {
   m.triangles = {{{0, 2, 4}}, {{2, 1, 4}}, {{1, 3, 4}}, {{3, 0, 4}},
                  {{2, 0, 5}}, {{1, 2, 5}}, {{3, 1, 5}}, {{0, 3, 5}}};
   return m;
+}
+
+// Well-spread vertices: farthest-point sampling by Euclidean distance from vertex 0.
+inline std::vector<int> farthest_points(const TriangleMesh& mesh, int count) {
+  std::vector<int> chosen{0};
+  std::vector<double> distance(mesh.vertices.size(), std::numeric_limits<double>::infinity());
+  while (static_cast<int>(chosen.size()) < count) {
+    for (size_t v = 0; v < distance.size(); ++v)
+      distance[v] = std::min(distance[v], (mesh.vertices[v] - mesh.vertices[chosen.back()]).squaredNorm());
+    chosen.push_back(static_cast<int>(std::max_element(distance.begin(), distance.end()) - distance.begin()));
+  }
+  return chosen;
 }
 
 }  // namespace cmaps::test

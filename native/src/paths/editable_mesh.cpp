@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 
+#include "common/ring.h"
 #include "consistent_maps/errors.h"
 
 namespace cmaps {
@@ -43,19 +44,9 @@ int EditableMesh::edge(int a, int b) const {
 }
 
 std::vector<int> EditableMesh::ring(int v) const {
-  std::map<int, int> next;  // ring edge a -> b of each triangle (v, a, b)
-  for (int f : vertex_faces_[v]) {
-    const Triangle& t = triangles_[f];
-    const int k = t[0] == v ? 0 : t[1] == v ? 1 : 2;
-    next[t[(k + 1) % 3]] = t[(k + 2) % 3];
-  }
-  std::vector<int> result;
-  int current = next.begin()->first;
-  for (size_t i = 0; i < next.size(); ++i) {
-    result.push_back(current);
-    current = next[current];
-  }
-  return result;
+  std::vector<Triangle> star;
+  for (int f : vertex_faces_[v]) star.push_back(triangles_[f]);
+  return ring_around(v, star);
 }
 
 void EditableMesh::set_edge(int a, int b, int f0, int f1) {

@@ -8,6 +8,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "common/ring.h"
 #include "consistent_maps/errors.h"
 #include "paths/layout_flips.h"
 #include "paths/mesh_search.h"
@@ -22,17 +23,10 @@ const double kThinAngle = 10 * M_PI / 180;
 
 // Counter-clockwise neighbours of v in a triangle list.
 std::vector<int> ring_in(const std::vector<Triangle>& triangles, int v) {
-  std::map<int, int> next;
+  std::vector<Triangle> star;
   for (const Triangle& t : triangles)
-    for (int k = 0; k < 3; ++k)
-      if (t[k] == v) next[t[(k + 1) % 3]] = t[(k + 2) % 3];
-  std::vector<int> ring;
-  int current = next.begin()->first;
-  for (size_t i = 0; i < next.size(); ++i) {
-    ring.push_back(current);
-    current = next[current];
-  }
-  return ring;
+    if (t[0] == v || t[1] == v || t[2] == v) star.push_back(t);
+  return ring_around(v, star);
 }
 
 // The angle at a of the spherical triangle (a, b, c).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <queue>
 
+#include "common/ring.h"
 #include "consistent_maps/errors.h"
 #include "progressive_mesh/quadric.h"
 
@@ -284,24 +285,9 @@ const VertexSplit& MeshRefinement::apply_next_split() {
 }
 
 std::vector<int> MeshRefinement::ring(int v) const {
-  // Each triangle (v, a, b) contributes the directed ring edge a -> b.
-  const auto& faces = vertex_faces_[v];
-  std::vector<std::pair<int, int>> edges;
-  edges.reserve(faces.size());
-  for (int f : faces) {
-    const Triangle& t = triangles_[f];
-    const int k = t[0] == v ? 0 : t[1] == v ? 1 : 2;
-    edges.emplace_back(t[(k + 1) % 3], t[(k + 2) % 3]);
-  }
-  std::vector<int> result;
-  result.reserve(edges.size());
-  int current = edges.front().first;
-  for (size_t i = 0; i < edges.size(); ++i) {
-    result.push_back(current);
-    auto it = std::find_if(edges.begin(), edges.end(), [&](const auto& e) { return e.first == current; });
-    current = it->second;
-  }
-  return result;
+  std::vector<Triangle> star;
+  for (int f : vertex_faces_[v]) star.push_back(triangles_[f]);
+  return ring_around(v, star);
 }
 
 std::vector<Triangle> MeshRefinement::active_triangles() const {
