@@ -189,6 +189,16 @@ def test_package_zip_installs():
                                            "--python-expr", code], env)
 
 
+def test_package_imports_without_bpy_and_quickly():
+    """The package, its API and the worker-thread job import in plain Python (bpy blocked), in under 1 s."""
+    code = ("import sys, time; sys.modules['bpy'] = None; sys.modules['bmesh'] = None;"
+            f"sys.path.insert(0, {str(ROOT / 'addon')!r}); start = time.perf_counter();"
+            "import consistent_maps, consistent_maps.api, consistent_maps.job, consistent_maps.status;"
+            "print('IMPORT-SECONDS', time.perf_counter() - start)")
+    seconds = float(_run([sys.executable, "-c", code]).split("IMPORT-SECONDS")[1])
+    assert seconds < 1.0, f"import took {seconds:.2f} s"
+
+
 def test_register_unregister():
     assert hasattr(bpy.types.Scene, "consistent_maps") and hasattr(bpy.types, "CM_PT_main")
     consistent_maps.unregister()
