@@ -43,6 +43,22 @@ void expect_valid(const TriangleMesh& mesh, const std::vector<int>& features, co
     EXPECT_NEAR(s.weights[0] + s.weights[1] + s.weights[2], 1.0, 1e-12);
     EXPECT_NEAR(s.sphere.norm(), 1.0, 1e-12);
   }
+  // Every refined triangle lies in its input triangle: its corners are input
+  // corners or Steiner vertices made of that triangle's corners only.
+  ASSERT_EQ(r.input_triangle.size(), r.triangles.size());
+  const int n = static_cast<int>(mesh.vertices.size());
+  for (size_t f = 0; f < r.triangles.size(); ++f) {
+    const Triangle& parent = mesh.triangles[r.input_triangle[f]];
+    auto in_parent = [&](int v) { return std::find(parent.begin(), parent.end(), v) != parent.end(); };
+    for (int v : r.triangles[f]) {
+      if (v < n) {
+        EXPECT_TRUE(in_parent(v)) << f;
+      } else {
+        for (int k = 0; k < 3; ++k)
+          if (r.steiner[v - n].weights[k] > 0) EXPECT_TRUE(in_parent(r.steiner[v - n].vertices[k])) << f;
+      }
+    }
+  }
 }
 
 struct WellSpread {

@@ -30,6 +30,7 @@ struct ConstrainedResult {
   std::vector<Vec3> sphere;              // one unit vector per input vertex, input order
   std::vector<SteinerVertex> steiner;    // vertex n + i of `triangles` is steiner[i]
   std::vector<Triangle> triangles;       // the refined triangulation the map is piecewise linear on
+  std::vector<int> input_triangle;       // per refined triangle: the input triangle it lies in
   std::vector<Vec3> targets;             // per feature (given, normalized, or automatic)
   SphericalMapReport report;             // measured on the refined triangulation
   double max_constraint_error = 0;       // max |sphere[feature] - target|

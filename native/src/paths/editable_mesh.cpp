@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <numeric>
 
 #include "common/ring.h"
 #include "consistent_maps/errors.h"
@@ -13,7 +14,9 @@ EditableMesh::EditableMesh(const TriangleMesh& mesh)
       positions_(mesh.vertices),
       origins_(mesh.vertices.size()),
       triangles_(mesh.triangles),
+      input_triangle_(mesh.triangles.size()),
       vertex_faces_(mesh.vertices.size()) {
+  std::iota(input_triangle_.begin(), input_triangle_.end(), 0);
   for (int v = 0; v < input_vertices_; ++v) origins_[v] = {{v, -1, -1}, {1, 0, 0}};
   for (int f = 0; f < static_cast<int>(triangles_.size()); ++f)
     for (int k = 0; k < 3; ++k) {
@@ -101,6 +104,7 @@ int EditableMesh::split_edge(int e) {
     new_faces[i] = static_cast<int>(triangles_.size());
     t[(k + 1) % 3] = m;
     triangles_.push_back({m, to[i], opposite[i]});
+    input_triangle_.push_back(input_triangle_[faces[i]]);
     // `to` leaves the old triangle for the new one; m and the opposite vertex join it.
     auto& to_faces = vertex_faces_[to[i]];
     std::replace(to_faces.begin(), to_faces.end(), faces[i], new_faces[i]);

@@ -33,6 +33,8 @@ class EditableMesh {
   int edge(int a, int b) const;  // -1 when a and b are not adjacent
   std::vector<int> ring(int v) const;  // neighbours, counter-clockwise
   const SurfacePoint& surface_point(int v) const { return origins_[v]; }
+  // The input triangle a triangle lies in (splits never cross input edges).
+  int input_triangle(int f) const { return input_triangle_[f]; }
 
   // Inserts a vertex at the midpoint of edge e, splitting its two triangles.
   int split_edge(int e);
@@ -46,6 +48,7 @@ class EditableMesh {
   std::vector<Vec3> positions_;
   std::vector<SurfacePoint> origins_;
   std::vector<Triangle> triangles_;
+  std::vector<int> input_triangle_;
   std::vector<std::vector<int>> vertex_faces_;
   std::unordered_map<std::uint64_t, int> edge_index_;
   std::vector<std::array<int, 2>> edge_vertices_, edge_faces_;

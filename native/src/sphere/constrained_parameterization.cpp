@@ -161,6 +161,8 @@ ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mes
   result.seconds_optimize = seconds_since(optimize_start);
 
   result.triangles = editable.triangles();
+  for (int f = 0; f < static_cast<int>(result.triangles.size()); ++f)
+    result.input_triangle.push_back(editable.input_triangle(f));
   if (inverted)
     for (Triangle& t : result.triangles) std::swap(t[1], t[2]);
   // Measure on the refined triangulation with original coordinates.
