@@ -330,6 +330,8 @@ py::tuple constrained_outputs(const cmaps::TriangleMesh& mesh, const cmaps::Cons
   extras["steiner_weights"] = steiner_weights;
   extras["steiner_sphere"] = to_numpy(steiner_sphere);
   extras["triangles"] = to_numpy(result.triangles);
+  extras["input_triangle"] = py::array_t<std::int32_t>(py::ssize_t(result.input_triangle.size()),
+                                                       result.input_triangle.data());
   extras["targets"] = to_numpy(result.targets);
   extras["refined_vertices"] = to_numpy(surface.surface.vertices);
   extras["refined_sphere"] = to_numpy(surface.sphere);
@@ -762,7 +764,8 @@ PYBIND11_MODULE(_native, m) {
         "extras dict). The map is piecewise linear on a refinement of the input: extras['triangles']\n"
         "(m', 3) int32 indexes the n input vertices followed by s Steiner vertices, vertex n + i lying on\n"
         "the input surface at sum_j extras['steiner_weights'][i, j] * vertices[extras['steiner_vertices'][i, j]]\n"
-        "(unused slots are -1 with weight 0) and mapped to extras['steiner_sphere'][i]; extras['targets'] is\n"
+        "(unused slots are -1 with weight 0) and mapped to extras['steiner_sphere'][i];\n"
+        "extras['input_triangle'][t] is the input triangle refined triangle t lies in; extras['targets'] is\n"
         "(k, 3), the targets used. Raises InvalidMeshError for unsupported input or bad features/targets,\n"
         "Cancelled when progress returns False.");
   m.def("consistent_spherical_parameterization", &consistent_spherical_parameterization, py::arg("meshes"),

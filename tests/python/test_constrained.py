@@ -50,7 +50,7 @@ def refined_positions(vertices, extras):
     return np.vstack([vertices, steiner])
 
 
-def expect_valid(native, vertices, features, sphere, stats, extras, targets):
+def expect_valid(native, vertices, input_triangles, features, sphere, stats, extras, targets):
     n, s = len(vertices), stats["steiner_vertices"]
     assert sphere.shape == (n, 3) and sphere.dtype == np.float64
     assert np.allclose(np.linalg.norm(sphere, axis=1), 1, atol=1e-12)
@@ -71,6 +71,13 @@ def expect_valid(native, vertices, features, sphere, stats, extras, targets):
     triangles = extras["triangles"]
     assert triangles.dtype == np.int32 and triangles.shape == (stats["refined_faces"], 3)
     assert triangles.min() == 0 and triangles.max() == n + s - 1
+    # Each refined triangle lies in one input triangle: its corners' input vertices are that triangle's.
+    parent = extras["input_triangle"]
+    assert parent.dtype == np.int32 and parent.shape == (len(triangles),)
+    corner_ids = np.concatenate([np.where(triangles[:, :, None] < n, triangles[:, :, None], -1),
+                                 np.where(triangles[:, :, None] >= n, ids[np.maximum(triangles - n, 0)], -1)], axis=2)
+    inside = (corner_ids[:, :, :, None] == input_triangles[parent][:, None, None, :]).any(axis=3) | (corner_ids == -1)
+    assert inside.all()
     # Measured independently on the refined mesh, the map is bijective.
     report = native.measure_spherical_map(refined_positions(vertices, extras), triangles, np.vstack([sphere, steiner_sphere]))
     assert report["flipped"] == 0 and report["bijective"]
@@ -81,9 +88,9 @@ def expect_valid(native, vertices, features, sphere, stats, extras, targets):
 
 @pytest.mark.parametrize("name", MESHES)
 def test_automatic_targets(native, meshes, automatic, name):
-    vertices, _ = meshes[name]
+    vertices, triangles = meshes[name]
     features, sphere, stats, extras = automatic[name]
-    expect_valid(native, vertices, features, sphere, stats, extras, extras["targets"])
+    expect_valid(native, vertices, triangles, features, sphere, stats, extras, extras["targets"])
     assert stats["faces"] == len(meshes[name][1]) and stats["vertices"] == len(vertices)
     assert stats["seconds"] >= stats["seconds_optimize"] >= 0
 
@@ -102,7 +109,7 @@ def test_given_targets(native, meshes, automatic, name):
     targets = (auto_extras["targets"] @ ROTATION.T) * np.linspace(0.5, 3, len(features))[:, None]
     sphere, stats, extras = native.constrained_spherical_parameterization(
         vertices, triangles, features.tolist(), targets.tolist(), seed=3, effort=0, threads=1)
-    expect_valid(native, vertices, features, sphere, stats, extras, targets)
+    expect_valid(native, vertices, triangles, features, sphere, stats, extras, targets)
 
 
 def test_deterministic(native, meshes, automatic):
