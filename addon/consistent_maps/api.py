@@ -2,15 +2,17 @@
 
     from consistent_maps import api          # 4.2+ extension: from bl_ext.<repo>.consistent_maps import api
     api.add_feature(head, "nose", 1234)
-    api.compute([head, other_head], effort=1)
+    api.compute([head, other_head], effort=1) # same features land on the same sphere points
     sphere = api.sphere(head)                 # (n, 3) numpy array, row i = vertex i
+    remeshes = api.remesh([head, other_head], 64)
 
 compute() runs synchronously; the Compute operator runs the same three steps,
 prepare (main thread), run (worker thread) and apply (main thread), without
 blocking the interface. Objects are only modified once everything succeeded.
 """
 import os
-from dataclasses import dataclass
+import uuid
+from dataclasses import dataclass, field
 
 from . import features as _features
 from . import meshdata, native, preview, results
@@ -56,6 +58,16 @@ class Task:
     """One object's input, copied out so the computation needs no Blender data."""
     name: str
     arrays: meshdata.MeshArrays
+    feature_vertices: list  # vertex of each of the set's shared features, in Outcome.feature_names order
+
+
+@dataclass
+class Outcome:
+    """What a run computed, for apply(): per task (sphere, stats, surface), surface being the
+    (vertices, triangles, sphere) of the map; and the feature locations common to the set."""
+    members: list
+    feature_names: list
+    feature_locations: list = field(default_factory=list)
 
 
 def _object_problems(objects):
@@ -88,40 +100,57 @@ def prepare(objects):
     if found:
         raise ComputeError("\n".join(found))
     tasks = []
+    names = _features.shared_names(objects)
     for obj in objects:
         arrays = meshdata.extract(obj)
         report = native.check_mesh(arrays.vertices, arrays.triangles)
         if report["sphere_error"]:
             found.append(_mesh_problem(obj.name, report))
-        tasks.append(Task(obj.name, arrays))
+        placed = _features.features(obj)
+        tasks.append(Task(obj.name, arrays, [placed[name] for name in names]))
     found += _features.problems(objects)
     if found:
         raise ComputeError("\n".join(found))
     return tasks
 
 
-def run(tasks, *, effort=1, seed=1, threads=None, progress=None):
-    """The computation proper, touching no Blender data (safe in a worker thread).
+def feature_names(objects):
+    """The names of the features a computation of these objects puts into correspondence, in order."""
+    return _features.shared_names(list(objects))
 
+
+def run(tasks, names, *, effort=1, seed=1, threads=None, progress=None):
+    """The computation proper, touching no Blender data (safe in a worker thread); returns an Outcome.
+
+    One object: its unconstrained map. Several: the consistent parameterization of the set, each
+    feature of `names` landing on one common sphere point on every member.
     progress(fraction of the whole run, text) returning False cancels: raises Cancelled.
-    Returns one (sphere, stats) per task.
     """
     threads = threads or os.cpu_count() or 1
-    outputs = []
-    for i, task in enumerate(tasks):
-        def forward(fraction, stage, i=i, name=task.name):
-            return progress is None or progress((i + fraction) / len(tasks), f"{name}: {stage}") is not False
-        try:
-            outputs.append(native.spherical_parameterization(
-                task.arrays.vertices, task.arrays.triangles,
-                effort=effort, seed=seed, threads=threads, progress=forward))
-        except native.InvalidMeshError as e:
-            raise ComputeError(f"'{task.name}': {e}") from e
-    return outputs
+
+    def forward(fraction, stage):
+        return progress is None or progress(fraction, stage) is not False
+    try:
+        if len(tasks) == 1:
+            arrays = tasks[0].arrays
+            sphere_, stats = native.spherical_parameterization(
+                arrays.vertices, arrays.triangles, effort=effort, seed=seed, threads=threads, progress=forward)
+            vertices = tasks[0].feature_vertices
+            return Outcome([(sphere_, stats, (arrays.vertices, arrays.triangles, sphere_))], list(names),
+                           [sphere_[v] for v in vertices])
+        result = native.consistent_spherical_parameterization(
+            [(t.arrays.vertices, t.arrays.triangles) for t in tasks], [t.feature_vertices for t in tasks],
+            effort=effort, seed=seed, threads=threads, progress=forward)
+    except native.InvalidMeshError as e:
+        raise ComputeError(str(e)) from e
+    members = [(sphere_, dict(stats, set_seconds=result["seconds"]),
+                (extras["refined_vertices"], extras["triangles"], extras["refined_sphere"]))
+               for sphere_, stats, extras in result["members"]]
+    return Outcome(members, list(names), list(result["feature_locations"]))
 
 
-def apply(tasks, outputs):
-    """Stores the outputs on the objects, if none of them changed meanwhile; returns {name: stats}."""
+def apply(tasks, outcome):
+    """Stores the outcome on the objects and the scene, if no object changed meanwhile; returns {name: stats}."""
     import bpy
     objects = [bpy.data.objects.get(task.name) for task in tasks]
     changed = [task.name for task, obj in zip(tasks, objects)
@@ -130,20 +159,60 @@ def apply(tasks, outputs):
     if changed:
         raise ComputeError(f"{', '.join(repr(n) for n in changed)} changed during the computation: "
                            f"nothing was stored, press Compute again")
-    for task, obj, (sphere_, stats) in zip(tasks, objects, outputs):
-        results.store(obj.data, sphere_, task.arrays.fingerprint, stats)
+    token = uuid.uuid4().hex
+    for task, obj, (sphere_, stats, surface) in zip(tasks, objects, outcome.members):
+        results.store(obj.data, sphere_, task.arrays.fingerprint, stats, surface, token)
         if preview.is_shown(obj):
             preview.show(obj)
-    return {task.name: stats for task, (_, stats) in zip(tasks, outputs)}
+    results.store_set(bpy.context.scene, token, outcome.feature_names, outcome.feature_locations)
+    return {task.name: stats for task, (_, stats, _) in zip(tasks, outcome.members)}
 
 
 def compute(objects, *, effort=1, seed=1, threads=None, progress=None):
     """Maps every object onto the sphere and stores the results; returns {object name: stats}.
 
+    With several objects the maps are consistent: each feature (shared by all, at least 3) lands
+    on the same sphere point on every object; api.remesh() then builds consistent remeshes.
+
     Raises ComputeError (invalid input, nothing modified) or Cancelled (progress returned False).
     """
+    objects = list(objects)
     tasks = prepare(objects)
-    return apply(tasks, run(tasks, effort=effort, seed=seed, threads=threads, progress=progress))
+    return apply(tasks, run(tasks, feature_names(objects), effort=effort, seed=seed, threads=threads,
+                            progress=progress))
+
+
+def _remesh_problems(objects, resolution, scene):
+    if not objects:
+        return ["The set is empty: select mesh objects and press Add Selected"]
+    found = [] if resolution >= 2 and resolution % 2 == 0 else [
+        f"The remesh resolution must be even and at least 2, not {resolution}"]
+    for obj in objects:
+        state = result_state(obj) if obj.type == 'MESH' else results.NONE
+        if state != results.CURRENT or results.surface(obj.data) is None:
+            found.append(f"'{obj.name}' has no {'current ' if state == results.STALE else ''}result: press Compute")
+        elif results.set_token(obj.data) != results.set_token(scene):
+            found.append(f"'{obj.name}' was not computed with the set last computed here: press Compute")
+    return found
+
+
+def remesh(objects, resolution=64, *, threads=None):
+    """Consistent remeshes of computed objects: new objects sharing one connectivity (the octahedral
+    grid of even `resolution`: resolution^2 + 2 vertices), each feature at the same vertex index on
+    all, in the collection "Consistent Maps". The objects are not modified. Returns the new objects."""
+    import bpy
+    import numpy as np
+
+    from . import remeshes  # Blender-only, like everything that creates data
+    objects, scene = list(objects), bpy.context.scene
+    found = _remesh_problems(objects, resolution, scene)
+    if found:
+        raise ComputeError("\n".join(found))
+    locations = results.feature_locations(scene)
+    remeshed = native.consistent_remesh(
+        [results.surface(obj.data) for obj in objects], np.array(list(locations.values()), dtype=float).reshape(-1, 3),
+        resolution, threads=threads or os.cpu_count() or 1)
+    return remeshes.create(scene, objects, remeshed, list(locations))
 
 
 def sphere(obj):

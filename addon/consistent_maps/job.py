@@ -12,23 +12,24 @@ _current = None
 
 
 class Job:
-    def __init__(self, tasks, options):
+    def __init__(self, tasks, names, options):
         self.tasks = tasks
         self.fraction = 0.0
         self.stage = "starting"
-        self.outputs = None
+        self.outcome = None
         self.error = None
         self.cancelled = False
         self._cancel_requested = False
-        self._thread = threading.Thread(target=self._work, args=(options,), name="consistent_maps", daemon=True)
+        self._thread = threading.Thread(target=self._work, args=(names, options), name="consistent_maps",
+                                        daemon=True)
 
     def _progress(self, fraction, stage):
         self.fraction, self.stage = fraction, stage
         return not self._cancel_requested
 
-    def _work(self, options):
+    def _work(self, names, options):
         try:
-            self.outputs = api.run(self.tasks, progress=self._progress, **options)
+            self.outcome = api.run(self.tasks, names, progress=self._progress, **options)
         except api.Cancelled:
             self.cancelled = True
         except Exception as e:  # reported to the user by the operator, on the main thread
@@ -45,11 +46,11 @@ class Job:
         return not self._thread.is_alive()
 
 
-def start(tasks, options):
+def start(tasks, names, options):
     global _current
     if _current is not None:
         raise RuntimeError("a computation is already running")
-    _current = Job(tasks, options)
+    _current = Job(tasks, names, options)
     _current.start()
     return _current
 

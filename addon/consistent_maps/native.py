@@ -1,10 +1,9 @@
 """The one place the add-on calls the native library.
 
 Every geometric computation lives in C++ (`_native`); this module only adapts
-arguments and names. Capabilities the library gains later (parameterization
-constrained by features, remeshing on the octahedral grid, point location on
-the sphere) get their wrapper here, next to the ones that exist today.
-No bpy here: it runs in worker threads and in plain Python.
+arguments and names, so a capability the library gains (e.g. point location on
+the sphere for transfers) gets its wrapper here. No bpy here: it runs in worker
+threads and in plain Python.
 """
 from . import _native
 
@@ -25,3 +24,20 @@ def spherical_parameterization(vertices, triangles, *, effort, seed, threads, pr
     """
     return _native.spherical_parameterization(
         vertices, triangles, effort=effort, seed=seed, threads=threads, progress=progress)
+
+
+def consistent_spherical_parameterization(meshes, features, *, effort, seed, threads, progress):
+    """Maps of a set with every feature on one common sphere point (thesis 3.2).
+
+    meshes: [(vertices, triangles)]; features: (members, k) vertex indices. Returns a dict with
+    'feature_locations' (k, 3) and 'members': per member (sphere, stats, extras), extras holding the
+    map as a parameterized surface ('refined_vertices', 'triangles', 'refined_sphere').
+    """
+    return _native.consistent_spherical_parameterization(
+        meshes, features, effort=effort, seed=seed, threads=threads, progress=progress)
+
+
+def consistent_remesh(surfaces, feature_locations, resolution, *, threads):
+    """Every (vertices, triangles, sphere) surface sampled on one octahedral grid of even resolution:
+    dict with 'triangles' (shared), 'positions' (members, V, 3), 'sphere', 'feature_vertices' (k,)."""
+    return _native.consistent_remesh(surfaces, feature_locations, resolution, threads=threads)

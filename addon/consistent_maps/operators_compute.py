@@ -36,10 +36,11 @@ class CM_OT_compute(bpy.types.Operator):
         return job.current() is None
 
     def _prepare(self, context):
+        """(tasks, feature names) for the set, or None after reporting why it cannot be computed."""
         objects = set_objects(context.scene)
         _leave_edit_mode(context, objects)
         try:
-            return api.prepare(objects)
+            return api.prepare(objects), api.feature_names(objects)
         except api.ComputeError as e:
             self.report({'ERROR'}, str(e))
             return None
@@ -52,21 +53,22 @@ class CM_OT_compute(bpy.types.Operator):
         return {'FINISHED'}
 
     def execute(self, context):
-        tasks = self._prepare(context)
-        if tasks is None:
+        prepared = self._prepare(context)
+        if prepared is None:
             return {'CANCELLED'}
+        tasks, names = prepared
         try:
-            return self._finish(api.apply(tasks, api.run(tasks, **_options(context))))
+            return self._finish(api.apply(tasks, api.run(tasks, names, **_options(context))))
         except api.ComputeError as e:
             return self._finish(e)
 
     def invoke(self, context, event):
         if bpy.app.background:
             return self.execute(context)
-        tasks = self._prepare(context)
-        if tasks is None:
+        prepared = self._prepare(context)
+        if prepared is None:
             return {'CANCELLED'}
-        self._job = job.start(tasks, _options(context))
+        self._job = job.start(*prepared, _options(context))
         wm = context.window_manager
         wm.consistent_maps_progress = 0
         self._timer = wm.event_timer_add(TIMER_STEP, window=context.window)
@@ -98,7 +100,7 @@ class CM_OT_compute(bpy.types.Operator):
         if finished.error is not None:
             return self._finish(finished.error)
         try:
-            return self._finish(api.apply(finished.tasks, finished.outputs))
+            return self._finish(api.apply(finished.tasks, finished.outcome))
         except api.ComputeError as e:
             return self._finish(e)
 

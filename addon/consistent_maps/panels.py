@@ -151,7 +151,6 @@ class CM_PT_compute(_Panel, bpy.types.Panel):
             row.prop(context.window_manager, "consistent_maps_progress", slider=True)
             layout.label(text=running.stage)
             layout.operator("consistent_maps.cancel", icon='CANCEL')
-        layout.label(text="Features not aligned yet", icon='INFO')
 
 
 class CM_PT_results(_Panel, bpy.types.Panel):
@@ -177,6 +176,9 @@ class CM_PT_results(_Panel, bpy.types.Panel):
         row = layout.row(align=True)
         row.operator("consistent_maps.sphere_preview", text="Sphere", icon='SPHERE').show = True
         row.operator("consistent_maps.sphere_preview", text="Shape", icon='MESH_DATA').show = False
+        row = layout.row(align=True)
+        row.prop(context.scene.consistent_maps, "resolution")
+        row.operator("consistent_maps.remesh", text="Remesh", icon='MOD_REMESH')
 
 
 CLASSES = (CM_UL_members, CM_UL_features, CM_PT_main, CM_PT_features, CM_PT_compute, CM_PT_results)

@@ -1,4 +1,4 @@
-"""Data the add-on keeps in the .blend: the set of objects and the compute options.
+"""Data the add-on keeps in the .blend: the set of objects and the compute and remesh options.
 
 `bpy.types.Scene.consistent_maps` holds them; the progress of a running
 computation lives on the window manager (shown in the panel, not worth saving).
@@ -32,6 +32,8 @@ class CM_Settings(bpy.types.PropertyGroup):
     active_member: IntProperty(name="Active Member")
     effort: EnumProperty(name="Effort", items=EFFORT_ITEMS, default='1',
                          description="How hard the optimizer works on reducing stretch")
+    resolution: IntProperty(name="Resolution", default=64, min=2, max=1024,
+                            description="Octahedral grid resolution n of the remeshes (even): n² + 2 vertices")
     show_features: BoolProperty(name="Show Features", default=True, update=_redraw_views,
                                 description="Draw the features of the set in the viewport, with their names")
 

@@ -2,8 +2,8 @@
 import bpy
 from bpy.app.handlers import persistent
 
-from . import (features, job, operators_compute, operators_features, operators_preview, operators_set, overlay,
-               panels, properties)
+from . import (features, job, operators_compute, operators_features, operators_preview, operators_remesh,
+               operators_set, overlay, panels, properties)
 
 CLASSES = (
     properties.CLASSES
@@ -11,6 +11,7 @@ CLASSES = (
     + operators_features.CLASSES
     + operators_compute.CLASSES
     + operators_preview.CLASSES
+    + operators_remesh.CLASSES
     + panels.CLASSES
 )
 

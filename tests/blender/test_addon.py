@@ -141,9 +141,9 @@ def _package_zip():
 
 def test_package_zip_layout():
     names = zipfile.ZipFile(_package_zip()).namelist()
-    for required in ("consistent_maps/__init__.py", "consistent_maps/blender_manifest.toml",
-                     "consistent_maps/api.py"):
-        assert required in names, f"{required} not in the zip"
+    sources = [f"consistent_maps/{p.name}" for p in (ROOT / "addon" / "consistent_maps").glob("*.py")]
+    for required in ["consistent_maps/blender_manifest.toml", *sources]:
+        assert required in names, f"{required} not in the zip (rebuild it: cmake --build build --target package_addon)"
     assert any(re.fullmatch(r"consistent_maps/_native\..*\.so", n) for n in names), "compiled module missing"
     assert all(n.startswith("consistent_maps/") for n in names), "one folder at the zip root"
     assert not any("__pycache__" in n or n.endswith(".pyc") for n in names)
@@ -211,7 +211,7 @@ def test_register_unregister():
 
 def test_every_operator_is_undoable():
     operators = [c for c in registration.CLASSES if issubclass(c, bpy.types.Operator)]
-    assert len(operators) == 11
+    assert len(operators) == 12
     for cls in operators:
         if cls.bl_idname != "consistent_maps.cancel":  # cancelling changes no data
             assert 'UNDO' in cls.bl_options, cls.bl_idname
@@ -433,6 +433,7 @@ def test_save_and_reload_keeps_results():
     assert api.features(a) == {"tip": 0, "left": 100, "right": 200}
     assert consistent_maps.results.stats(a.data)["bijective"]
     assert a.data.shape_keys.key_blocks["CM Sphere"].value == 1.0
+    assert len(api.remesh([a], 8)[0].data.vertices) == 66, "the parameterized surface is saved too"
 
 
 def test_sphere_preview_operator():
@@ -459,7 +460,7 @@ def test_sphere_preview_operator():
 def test_threaded_job_leaves_the_main_thread_free_and_applies():
     spot = with_features(load(SPOT, "Spot"))
     tasks = api.prepare([spot])
-    running = job.start(tasks, {"effort": 0, "threads": 1})
+    running = job.start(tasks, api.feature_names([spot]), {"effort": 0, "threads": 1})
     assert bpy.ops.consistent_maps.compute.poll() is False, "one computation at a time"
     longest, last = 0.0, time.perf_counter()
     while not running.done:
@@ -469,7 +470,7 @@ def test_threaded_job_leaves_the_main_thread_free_and_applies():
     assert running.error is None and not running.cancelled and running.fraction > 0.5
     assert longest < 0.1, f"main thread blocked for {longest:.3f} s"
     assert api.result_state(spot) == "NONE", "nothing is stored before apply"
-    api.apply(running.tasks, running.outputs)
+    api.apply(running.tasks, running.outcome)
     job.finish()
     assert api.result_state(spot) == "CURRENT" and on_unit_sphere(api.sphere(spot))
 
@@ -478,20 +479,20 @@ def test_cancel_operator_stops_the_job_and_changes_nothing():
     spot = with_features(load(SPOT, "Spot"))
     before = snapshot(spot)
     assert bpy.ops.consistent_maps.cancel.poll() is False
-    running = job.start(api.prepare([spot]), {"effort": 1, "threads": 1})
+    running = job.start(api.prepare([spot]), [], {"effort": 1, "threads": 1})
     while running.stage == "starting" and not running.done:  # wait for the first progress report
         time.sleep(0.005)
     assert bpy.ops.consistent_maps.cancel() == {'FINISHED'}
     while not running.done:
         time.sleep(0.01)
-    assert running.cancelled and running.outputs is None
+    assert running.cancelled and running.outcome is None
     job.finish()
     assert snapshot(spot) == before
 
 
 def test_loading_a_file_drops_a_running_job():
     spot = load(SPOT, "Spot")
-    running = job.start(api.prepare([spot]), {"effort": 2, "threads": 1})
+    running = job.start(api.prepare([spot]), [], {"effort": 2, "threads": 1})
     bpy.ops.wm.read_homefile(use_empty=True)
     assert job.current() is None and bpy.ops.consistent_maps.compute.poll()
     while not running.done:
@@ -512,15 +513,83 @@ def test_cancel_through_progress_callback():
 def test_apply_refuses_a_mesh_edited_during_the_computation():
     a = load(BALL, "A")
     tasks = api.prepare([a])
-    outputs = api.run(tasks, effort=0)
+    outcome = api.run(tasks, [], effort=0)
     a.data.vertices[0].co.z += 0.1
     before = snapshot(a)
     try:
-        api.apply(tasks, outputs)
+        api.apply(tasks, outcome)
         raise AssertionError("apply must refuse")
     except api.ComputeError as e:
         assert "changed during the computation" in str(e)
     assert snapshot(a) == before
+
+
+def _consistent_pair():
+    a = with_features(load(BALL, "A"))
+    b = load(BALL, "B", location=(3, 0, 0))
+    b.data.transform(np.diag([1.0, 1.6, 0.8, 1.0]))  # another shape, same features
+    with_features(b)
+    make_set([a, b])
+    bpy.context.scene.consistent_maps.effort = '0'
+    assert bpy.ops.consistent_maps.compute() == {'FINISHED'}
+    return a, b
+
+
+def test_compute_of_a_set_is_consistent():
+    a, b = _consistent_pair()
+    locations = consistent_maps.results.feature_locations(bpy.context.scene)
+    assert list(locations) == ["tip", "left", "right"]
+    for obj in (a, b):
+        sphere = api.sphere(obj)
+        assert on_unit_sphere(sphere)
+        for name, vertex in api.features(obj).items():
+            assert np.allclose(sphere[vertex], locations[name], atol=1e-5), (obj.name, name)
+        stats = consistent_maps.results.stats(obj.data)
+        assert stats["bijective"] and "steiner_vertices" in stats
+    surface = consistent_maps.results.surface(a.data)
+    assert surface[0].shape[0] >= len(a.data.vertices) and on_unit_sphere(surface[2])
+
+
+def test_remesh_operator_creates_consistent_remeshes():
+    a, b = _consistent_pair()
+    before = [snapshot(a), snapshot(b)]
+    bpy.context.scene.consistent_maps.resolution = 16
+    assert bpy.ops.consistent_maps.remesh() == {'FINISHED'}
+    collection = bpy.data.collections["Consistent Maps"]
+    remeshed = [bpy.data.objects["A remesh"], bpy.data.objects["B remesh"]]
+    assert all(obj.name in collection.objects for obj in remeshed)
+    for obj in remeshed:
+        assert len(obj.data.vertices) == 16 * 16 + 2 and len(obj.data.polygons) == 2 * 16 * 16
+    polygons = [[tuple(p.vertices) for p in obj.data.polygons] for obj in remeshed]
+    assert polygons[0] == polygons[1], "one connectivity"
+    assert api.features(remeshed[0]) == api.features(remeshed[1]) and len(api.features(remeshed[0])) == 3
+    assert remeshed[1].matrix_world == b.matrix_world
+    assert [snapshot(a), snapshot(b)] == before, "originals untouched"
+    created = api.remesh([a, b], 8)
+    assert [len(obj.data.vertices) for obj in created] == [66, 66]
+
+
+def test_remesh_errors():
+    a = load(BALL, "A")
+    make_set([a])
+    expect_error(bpy.ops.consistent_maps.remesh, "press Compute")
+    bpy.ops.consistent_maps.compute()
+    for resolution in (7, 0):
+        try:
+            api.remesh([a], resolution)
+            raise AssertionError("odd or zero resolution must be refused")
+        except api.ComputeError as e:
+            assert "even" in str(e)
+    b = load(BALL, "B")
+    api.compute([b], effort=0)  # a later computation: A no longer belongs to the scene's set
+    expect_error(bpy.ops.consistent_maps.remesh, "not computed with the set")
+    a.data.vertices[0].co.x += 0.1
+    try:
+        api.remesh([a], 8)
+        raise AssertionError("stale results must not be remeshed")
+    except api.ComputeError as e:
+        assert "no current result" in str(e)
+    assert "Consistent Maps" not in bpy.data.collections
 
 
 # -- error paths: a plain message, nothing modified ----------------------------------------------

@@ -1,0 +1,36 @@
+"""Consistent remeshes as new objects: one shared connectivity, features at identical vertex indices.
+
+They go into the collection "Consistent Maps", each with its original's transform; the
+originals are not touched.
+"""
+import bpy
+
+from . import features
+
+COLLECTION = "Consistent Maps"
+
+
+def _collection(scene):
+    collection = bpy.data.collections.get(COLLECTION) or bpy.data.collections.new(COLLECTION)
+    if scene.collection.children.get(collection.name) is None:
+        scene.collection.children.link(collection)
+    return collection
+
+
+def create(scene, objects, remeshed, names):
+    """New objects from the native consistent_remesh result (same order as objects)."""
+    collection = _collection(scene)
+    triangles = remeshed["triangles"].tolist()
+    created = []
+    for obj, positions in zip(objects, remeshed["positions"]):
+        mesh = bpy.data.meshes.new(f"{obj.name} remesh")
+        mesh.from_pydata(positions.tolist(), [], triangles)
+        mesh.update()
+        new = bpy.data.objects.new(mesh.name, mesh)
+        new.matrix_world = obj.matrix_world.copy()
+        for name, vertex in zip(names, remeshed["feature_vertices"]):
+            new.vertex_groups.new(name=features.group_name(name)).add([int(vertex)], 1.0, 'REPLACE')
+        collection.objects.link(new)
+        created.append(new)
+    features.invalidate()
+    return created
