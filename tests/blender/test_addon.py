@@ -686,20 +686,16 @@ def _marker(position, rgba, name):
     bpy.context.scene.collection.objects.link(obj)
 
 
-def test_render_sphere_preview():
-    """Workbench render of Spot next to its sphere preview, both coloured by the original position,
-    features as balls in their overlay colours: out/blender/sphere_preview-<version>.png."""
-    spot = with_features(load(SPOT, "Spot", location=(-1.1, 0, 0)))
-    ball = with_features(load(SPOT, "Spot sphere", location=(1.1, 0, 0)))
-    for obj in (spot, ball):
+def _place(objects):
+    """Side by side along x, facing the camera of _render."""
+    for i, obj in enumerate(objects):
+        obj.location = (1.1 * (2 * i - len(objects) + 1), 0, 0)
         obj.rotation_euler = (np.pi / 2, 0, -3 * np.pi / 4)  # Spot's OBJ is y-up
-        _colour_by_position(obj)
-    make_set([spot, ball])
-    api.compute([spot, ball], effort=0)
-    api.show_sphere(ball)
     bpy.context.view_layer.update()
-    for point in overlay.feature_points(bpy.context):
-        _marker(*point)
+
+
+def _render(name):
+    """Workbench render (objects coloured by their colour attribute): out/blender/<name>-<version>.png."""
     scene = bpy.context.scene
     camera = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
     scene.collection.objects.link(camera)
@@ -713,6 +709,47 @@ def test_render_sphere_preview():
     scene.display.shading.color_type = 'VERTEX'
     scene.render.resolution_x, scene.render.resolution_y = 640, 320
     OUT.mkdir(parents=True, exist_ok=True)
-    scene.render.filepath = str(OUT / f"sphere_preview-{VERSION}.png")
+    scene.render.filepath = str(OUT / f"{name}-{VERSION}.png")
     bpy.ops.render.render(write_still=True)
     assert os.path.getsize(scene.render.filepath) > 5000
+
+
+def test_render_remeshes():
+    """Consistent remeshes of Spot (low) and Spot (finer mesh, features at the nearest vertices),
+    coloured by vertex index: identical colours mean corresponding points. out/blender/remeshes-*.png."""
+    low = load(SPOT, "Spot low")
+    fine = load(SHARED / "genus0" / "spot.obj", "Spot")
+    fine_co = np.array([list(v.co) for v in fine.data.vertices])
+    for name, index in (("a", 0), ("b", 100), ("c", 200), ("d", 400), ("e", 600)):
+        api.add_feature(low, name, index)
+        nearest = int(np.argmin(np.linalg.norm(fine_co - np.array(low.data.vertices[index].co), axis=1)))
+        api.add_feature(fine, name, nearest)
+    api.compute([low, fine], effort=0)
+    remeshed = api.remesh([low, fine], 32)
+    _colour_by_position(remeshed[0])
+    colours = remeshed[0].data.attributes["where"]
+    rgba = np.empty(len(colours.data) * 4, dtype=np.float32)
+    colours.data.foreach_get("color", rgba)
+    remeshed[1].data.attributes.new("where", 'FLOAT_COLOR', 'POINT').data.foreach_set("color", rgba)
+    remeshed[1].data.attributes.active_color = remeshed[1].data.attributes["where"]
+    for obj in (low, fine):
+        obj.hide_render = True
+    _place(remeshed)
+    _render("remeshes")
+
+
+def test_render_sphere_preview():
+    """Workbench render of Spot next to its sphere preview, both coloured by the original position,
+    features as balls in their overlay colours: out/blender/sphere_preview-<version>.png."""
+    spot = with_features(load(SPOT, "Spot"))
+    ball = with_features(load(SPOT, "Spot sphere"))
+    for obj in (spot, ball):
+        _colour_by_position(obj)
+    _place([spot, ball])
+    make_set([spot, ball])
+    api.compute([spot, ball], effort=0)
+    api.show_sphere(ball)
+    bpy.context.view_layer.update()
+    for point in overlay.feature_points(bpy.context):
+        _marker(*point)
+    _render("sphere_preview")
