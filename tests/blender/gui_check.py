@@ -40,7 +40,8 @@ def load(name, x):
 
 
 def show_panels_in_reach(area):
-    """Open the sidebar on the add-on's tab (3.4 cannot switch tabs from Python: use the Item tab)."""
+    """Open the sidebar on the add-on's tab (3.4 cannot switch tabs from Python: move the panels to the
+    Tool tab, the one a new window shows, above its own panels)."""
     area.spaces.active.show_region_ui = True
     sidebar = next(r for r in area.regions if r.type == 'UI')
     if hasattr(sidebar, "active_panel_category"):
@@ -50,7 +51,7 @@ def show_panels_in_reach(area):
         bpy.utils.unregister_class(cls)
     for cls in panels.CLASSES:
         if hasattr(cls, "bl_category"):
-            cls.bl_category = "Item"
+            cls.bl_category, cls.bl_order = "Tool", -1
         bpy.utils.register_class(cls)
 
 
