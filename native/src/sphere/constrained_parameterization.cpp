@@ -66,6 +66,26 @@ Vec3 on_surface(const SurfacePoint& p, const std::vector<Vec3>& vertices) {
   return x;
 }
 
+// The triangulation of the base vertices: the Delaunay triangulation of
+// where the guide puts them, which matches the mesh's own shape, when it is
+// also a valid triangulation of the targets; otherwise the targets' own.
+std::vector<Triangle> feature_layout(const std::vector<Vec3>& points, const std::vector<int>& base_vertices,
+                                     const std::vector<Vec3>& guide) {
+  std::vector<Vec3> guided;
+  for (int v : base_vertices) guided.push_back(guide[v]);
+  if (const auto natural = convex_hull_on_sphere(guided)) {
+    bool valid = true;
+    for (const Triangle& t : *natural) {
+      const Vec3 &a = points[t[0]], &b = points[t[1]], &c = points[t[2]];
+      valid = valid && a.dot(b.cross(c)) > 1e-9 * (b - a).cross(c - a).norm();
+    }
+    if (valid) return *natural;
+  }
+  const auto hull = convex_hull_on_sphere(points);
+  if (!hull) throw Error("internal error: targets are coplanar after adding free vertices");
+  return *hull;
+}
+
 }  // namespace
 
 ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mesh, const std::vector<int>& features,
@@ -112,15 +132,14 @@ ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mes
     points.push_back(*extra);
     base_vertices.push_back(farthest_vertex(guide.sphere, base_vertices));
   }
-  const auto hull = convex_hull_on_sphere(points);
-  if (!hull) throw Error("internal error: targets are coplanar after adding free vertices");
+  const std::vector<Triangle> layout = feature_layout(points, base_vertices, guide.sphere);
 
   // Paths are traced in the guide's metric: there they follow great-circle
   // arcs, so they pass features on the same side as the arcs between the
   // targets do whenever the targets are laid out like the guide (no swirls).
   EditableMesh editable({guide.sphere, triangles});
   const PathNetwork network =
-      trace_path_network(editable, base_vertices, points, *hull, ProgressSlice(progress, "paths", begin, begin + 0.1));
+      trace_path_network(editable, base_vertices, points, layout, ProgressSlice(progress, "paths", begin, begin + 0.1));
   result.retraced_paths = network.retraced;
   result.layout_flips = network.flips;
   result.seconds_paths = seconds_since(paths_start);
