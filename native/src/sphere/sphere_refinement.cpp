@@ -1,8 +1,6 @@
 #include "sphere/sphere_refinement.h"
 
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include "consistent_maps/errors.h"
 #include "sphere/spherical_kernel.h"
@@ -90,13 +88,6 @@ void place_on_arc(const MeshRefinement& mesh, const ArcChains& arcs, const Verte
   const bool kept_low = s.kept == lo;
   for (double f = 1.0 / kSamples; f > 1e-15; f *= 0.5)
     if (valid_at(kept_low ? f : 1 - f)) return;
-  if (getenv("CMAPS_DEBUG")) {
-    fprintf(stderr, "v %d kept %d lo %d hi %d t0 %g t1 %g ring:", v, s.kept, lo, hi, t0, t1);
-    for (int w : mesh.ring(v)) fprintf(stderr, " %d(%d)", w, arcs.constrained(w) ? arcs.chain_of[w] : -1);
-    fprintf(stderr, "\n chain %d:", arcs.chain_of[v]);
-    for (int w : arcs.chains[arcs.chain_of[v]]) fprintf(stderr, " %d%s", w, mesh.vertex_active(w) ? "*" : "");
-    fprintf(stderr, "\n");
-  }
   throw Error("internal error: empty kernel on a constrained path at vertex split " + std::to_string(v));
 }
 
