@@ -37,6 +37,8 @@ struct ConsistentResult {
   double seconds = 0;
 };
 
+// Members may have holes (thesis 3.5) when the same features (at least 3)
+// ring corresponding holes on every member; InvalidInput otherwise.
 // Throws InvalidInput when feature lists differ in length, name a vertex out
 // of range, leave a member with fewer than 3 features, or no member has every
 // feature; TopologyError for a member that is not closed genus 0.
@@ -52,12 +54,15 @@ ConstrainedResult parameterize_to_locations(const ConsistentMember& member, cons
 
 // A member's map as a plain parameterized surface: the refined triangulation
 // (input vertices, then Steiner vertices at their surface positions) and one
-// unit vector per vertex.
+// unit vector per vertex. With `close_holes`, a mesh with holes also gets
+// their temporary centres (after the Steiner vertices) and fan triangles
+// (after the others), so that it covers the whole sphere.
 struct ParameterizedSurface {
   TriangleMesh surface;
   std::vector<Vec3> sphere;
 };
-ParameterizedSurface parameterized_surface(const TriangleMesh& mesh, const ConstrainedResult& map);
+ParameterizedSurface parameterized_surface(const TriangleMesh& mesh, const ConstrainedResult& map,
+                                          bool close_holes = false);
 
 // Consistent remeshes: every member sampled at the same sphere points, so
 // they share one connectivity; feature k sits at vertex feature_vertices[k].
@@ -66,6 +71,12 @@ struct ConsistentRemesh {
   std::vector<Triangle> triangles;          // their connectivity
   std::vector<std::vector<Vec3>> positions; // per member: one position per sample
   std::vector<int> feature_vertices;        // per feature
+  // Meshes with holes: per sample, whether it falls in a hole of some
+  // member (its positions there interpolate the hole's temporary fan);
+  // grid triangles with such a corner are left out of `triangles`, so the
+  // remeshes share one connectivity with the holes open (samples are kept,
+  // unreferenced, so sample indices match the grid).
+  std::vector<char> in_hole;
 };
 // On the octahedral grid of resolution n (even, >= 2).
 ConsistentRemesh consistent_remesh(const std::vector<ConsistentMember>& members, const ConsistentResult& result,

@@ -38,9 +38,26 @@ struct ConstrainedResult {
   int retraced_paths = 0;
   int layout_flips = 0;                  // arcs flipped to shorter surface paths
   double seconds_paths = 0, seconds_simplify = 0, seconds_optimize = 0;
+  // Meshes with holes (thesis 3.5): each hole was closed by a temporary
+  // centre vertex and a fan of triangles, left out of the results above.
+  // They are kept here so that the sphere can be covered when needed (e.g.
+  // to resample): centre h is vertex n + steiner.size() + h of
+  // hole_triangles (n = input vertices), whose other corners index like
+  // `triangles`.
+  int holes = 0;
+  std::vector<Triangle> hole_triangles;
+  std::vector<Vec3> hole_centres_sphere;
+  std::vector<Vec3> hole_centres_position;    // the loop's centroid, input coordinates
+  std::vector<std::vector<int>> hole_features;  // per hole: indices into the features, along the boundary
 };
 
-// `features` are distinct vertex indices (at least 3). `targets` holds one
+// `features` are distinct vertex indices (at least 3). The mesh may have
+// holes (boundary loops; thesis 3.5) when it is genus 0 once they are
+// closed: each hole must be ringed by at least 3 features on its boundary;
+// the boundary between two consecutive ones maps onto the great-circle arc
+// between their targets, and the hole maps to the spherical polygon of its
+// features' targets (which must run around it in the boundary's order and
+// enclose no other target). `targets` holds one
 // direction per feature (normalized here; they must be distinct), or is empty
 // to take them from the unconstrained parameterization. Throws InvalidInput /
 // TopologyError for bad input and Cancelled when `progress` says so.

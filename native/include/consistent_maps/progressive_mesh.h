@@ -22,6 +22,10 @@ struct SimplificationOptions {
   // collapsing along one of its two path edges; path junctions and ends must
   // be locked.
   std::vector<std::array<int, 2>> path_edges;
+  // Vertex chains (hole boundaries between two features, which map onto one
+  // great-circle arc): no collapse may join two vertices of one chain by a
+  // new edge unless the removed vertex lies on that chain (a collapse along it).
+  std::vector<std::vector<int>> chains;
   // Further geometries sharing the input's connectivity (vertex order); the
   // quadric error and the flip test then cover every geometry.
   std::vector<std::vector<Vec3>> extra_geometries;

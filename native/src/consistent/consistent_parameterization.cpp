@@ -1,13 +1,17 @@
 #include "consistent_maps/consistent_parameterization.h"
 
+#include <algorithm>
 #include <chrono>
+#include <set>
 #include <string>
 
 #include "consistent_maps/errors.h"
 #include "consistent_maps/mesh_check.h"
 #include "consistent_maps/octahedral_grid.h"
 #include "consistent_maps/remesh.h"
+#include "consistent_maps/sphere_locator.h"
 #include "consistent_maps/spherical_parameterization.h"
+#include "paths/mesh_holes.h"
 
 namespace cmaps {
 namespace {
@@ -43,6 +47,28 @@ void validate(const std::vector<ConsistentMember>& members, const ConsistentOpti
     if (present(m).vertices.size() < 3)
       throw InvalidInput("mesh " + std::to_string(i) + " has fewer than 3 of the features");
   }
+  // Holes (thesis 3.5): the same features must ring corresponding holes on
+  // every member.
+  std::vector<std::set<std::vector<int>>> rings(members.size());
+  for (size_t i = 0; i < members.size(); ++i) {
+    const ClosedMesh closed = close_holes(members[i].mesh);
+    for (std::vector<int> ring : hole_features(closed, members[i].features, "mesh " + std::to_string(i) + ": ")) {
+      std::sort(ring.begin(), ring.end());
+      rings[i].insert(ring);
+    }
+  }
+  auto names = [](const std::vector<int>& ring) {
+    std::string s;
+    for (int f : ring) s += (s.empty() ? "" : ", ") + std::to_string(f);
+    return s;
+  };
+  for (size_t i = 0; i < members.size(); ++i)
+    for (size_t j = 0; j < members.size(); ++j)
+      for (const auto& ring : rings[i])
+        if (!rings[j].count(ring))
+          throw InvalidInput("features " + names(ring) + " ring a hole on mesh " + std::to_string(i) +
+                             " but not on mesh " + std::to_string(j) +
+                             "; the same features must ring corresponding holes on every mesh");
   if (options.first >= static_cast<int>(members.size())) throw InvalidInput("first member out of range");
 }
 
@@ -73,7 +99,8 @@ ProgressCallback slice(const ProgressCallback& progress, double begin, double en
 
 }  // namespace
 
-ParameterizedSurface parameterized_surface(const TriangleMesh& mesh, const ConstrainedResult& map) {
+ParameterizedSurface parameterized_surface(const TriangleMesh& mesh, const ConstrainedResult& map,
+                                          bool close_holes) {
   ParameterizedSurface p;
   p.surface.vertices = mesh.vertices;
   p.surface.triangles = map.triangles;
@@ -84,6 +111,13 @@ ParameterizedSurface parameterized_surface(const TriangleMesh& mesh, const Const
       if (s.vertices[k] >= 0) x += s.weights[k] * mesh.vertices[s.vertices[k]];
     p.surface.vertices.push_back(x);
     p.sphere.push_back(s.sphere);
+  }
+  if (close_holes) {
+    for (int h = 0; h < map.holes; ++h) {
+      p.surface.vertices.push_back(map.hole_centres_position[h]);
+      p.sphere.push_back(map.hole_centres_sphere[h]);
+    }
+    p.surface.triangles.insert(p.surface.triangles.end(), map.hole_triangles.begin(), map.hole_triangles.end());
   }
   return p;
 }
@@ -111,8 +145,8 @@ ConsistentResult consistent_spherical_parameterization(const std::vector<Consist
 
   // 1. Initial locations from the first member alone.
   const ConsistentMember& first = members[result.first];
-  const SphereResult seed =
-      spherical_parameterization(outward(first.mesh), options.sphere, slice(progress, 0, share));
+  const SphereResult seed = spherical_parameterization(outward(close_holes(first.mesh).mesh), options.sphere,
+                                                      slice(progress, 0, share));
   for (int v : first.features) result.initial_locations.push_back(seed.sphere[v]);
 
   // 2-3. Every member mapped to them, then sampled on one grid with the
@@ -124,7 +158,8 @@ ConsistentResult consistent_spherical_parameterization(const std::vector<Consist
   for (int i = 0; i < n; ++i) {
     const ConstrainedResult map = parameterize_to_locations(members[i], result.initial_locations, options.sphere,
                                                             slice(progress, (1 + i) * share, (2 + i) * share));
-    const ParameterizedSurface p = parameterized_surface(members[i].mesh, map);
+    // Holes are sampled on their temporary fans, so every grid sample has a position.
+    const ParameterizedSurface p = parameterized_surface(members[i].mesh, map, true);
     shapes.push_back(resample(p.surface, p.sphere, samples, options.sphere.threads));
   }
 
@@ -149,10 +184,25 @@ ConsistentRemesh consistent_remesh(const std::vector<ConsistentMember>& members,
   remesh.sphere = grid.sphere;
   remesh.triangles = grid.triangles;
   remesh.feature_vertices = snap_features(remesh.sphere, result.feature_locations);
+  remesh.in_hole.assign(remesh.sphere.size(), 0);
   for (size_t i = 0; i < members.size(); ++i) {
-    const ParameterizedSurface p = parameterized_surface(members[i].mesh, result.members[i]);
+    const ConstrainedResult& map = result.members[i];
+    const ParameterizedSurface p = parameterized_surface(members[i].mesh, map, true);
     remesh.positions.push_back(resample(p.surface, p.sphere, remesh.sphere, threads));
+    if (map.holes == 0) continue;
+    // Samples on the temporary fans lie in a hole of this member.
+    const SphereLocator locator(p.sphere, p.surface.triangles);
+    const auto at = locator.locate_all(remesh.sphere, threads);
+    const int real = static_cast<int>(map.triangles.size());
+    for (size_t s = 0; s < at.size(); ++s)
+      if (at[s].triangle >= real) remesh.in_hole[s] = 1;
   }
+  // Features on a hole boundary are where they belong, not in the hole.
+  for (int v : remesh.feature_vertices) remesh.in_hole[v] = 0;
+  std::vector<Triangle> kept;
+  for (const Triangle& t : remesh.triangles)
+    if (!remesh.in_hole[t[0]] && !remesh.in_hole[t[1]] && !remesh.in_hole[t[2]]) kept.push_back(t);
+  remesh.triangles = std::move(kept);
   return remesh;
 }
 

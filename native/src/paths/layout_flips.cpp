@@ -8,7 +8,13 @@
 namespace cmaps {
 
 int flip_layout_to_shorter_paths(const EditableMesh& mesh, const std::vector<int>& features,
-                                 const std::vector<Vec3>& targets, std::vector<Triangle>& triangles) {
+                                 const std::vector<Vec3>& targets, std::vector<Triangle>& triangles,
+                                 const std::vector<std::array<int, 2>>& fixed) {
+  auto is_fixed = [&](int i, int j) {
+    for (const auto& a : fixed)
+      if ((a[0] == i && a[1] == j) || (a[0] == j && a[1] == i)) return true;
+    return false;
+  };
   std::vector<char> blocked(mesh.vertex_count(), 0);
   for (int v : features) blocked[v] = 1;
   std::map<std::pair<int, int>, double> cache;
@@ -39,7 +45,7 @@ int flip_layout_to_shorter_paths(const EditableMesh& mesh, const std::vector<int
         const int g = owner.at({j, i});
         const Triangle& other = triangles[g];
         const int q = other[0] != i && other[0] != j ? other[0] : other[1] != i && other[1] != j ? other[1] : other[2];
-        if (p == q || owner.count({p, q}) || !valid(p, i, q) || !valid(q, j, p)) continue;
+        if (p == q || is_fixed(i, j) || owner.count({p, q}) || !valid(p, i, q) || !valid(q, j, p)) continue;
         if (distance(p, q) < 0.98 * distance(i, j)) {
           // (i, j, p) + (j, i, q) -> (p, i, q) + (q, j, p)
           triangles[f] = {p, i, q};

@@ -5,14 +5,17 @@
 // triangles when that diagonal's shortest surface path is shorter and both
 // new spherical triangles are positively oriented.
 #pragma once
+#include <array>
 #include <vector>
 
 #include "paths/editable_mesh.h"
 
 namespace cmaps {
 
-// Returns the number of flips made on `triangles` (indices into `targets`).
+// Returns the number of flips made on `triangles` (indices into `targets`);
+// `fixed` arcs (feature index pairs, either order) are never flipped.
 int flip_layout_to_shorter_paths(const EditableMesh& mesh, const std::vector<int>& features,
-                                 const std::vector<Vec3>& targets, std::vector<Triangle>& triangles);
+                                 const std::vector<Vec3>& targets, std::vector<Triangle>& triangles,
+                                 const std::vector<std::array<int, 2>>& fixed = {});
 
 }  // namespace cmaps

@@ -63,20 +63,50 @@ class Tracer {
     first_step_.resize(k);
     blocked_.assign(mesh.vertex_count(), 0);
     for (int v : features) blocked_[v] = 1;
+    component_.resize(k);
+    std::iota(component_.begin(), component_.end(), 0);
+    components_ = k;
+    done_.assign(network_.arcs.size(), 0);
+    extremity_.assign(k, 0);
+  }
+
+  // Lays down a given path between two features' vertices.
+  void prelay(const std::vector<int>& path) {
+    std::unordered_map<int, int> feature_of;
+    for (int f = 0; f < static_cast<int>(features_.size()); ++f) feature_of[features_[f]] = f;
+    if (path.size() < 2 || !feature_of.count(path.front()) || !feature_of.count(path.back()))
+      throw Error("internal error: a given path does not join two features");
+    int i = feature_of.at(path.front()), j = feature_of.at(path.back());
+    std::vector<int> nodes = path;
+    if (i > j) {
+      std::swap(i, j);
+      std::reverse(nodes.begin(), nodes.end());
+    }
+    int a = -1;
+    for (int b = 0; b < static_cast<int>(network_.arcs.size()); ++b)
+      if (network_.arcs[b][0] == i && network_.arcs[b][1] == j) a = b;
+    if (a < 0) throw Error("internal error: a given path is not an arc of the layout");
+    if (done_[a]) throw Error("internal error: two given paths for one arc");
+    for (size_t s = 0; s + 1 < nodes.size(); ++s)
+      if (mesh_.edge(nodes[s], nodes[s + 1]) < 0) throw Error("internal error: a given path is not along mesh edges");
+    search_vertices_ = mesh_.vertex_count();
+    lay_down(a, nodes);
+    done_[a] = 1;
+    ++prelaid_;
   }
 
   PathNetwork run(const ProgressSlice& progress) {
     const int arcs = static_cast<int>(network_.arcs.size());
     length_.assign(arcs, kInf);
     for (int a = 0; a < arcs; ++a) length_[a] = path_length(trace(a, false, false));
+    for (int a = 0; a < arcs; ++a)
+      if (done_[a]) length_[a] = path_length(network_.paths[a]);
     find_extremities();
 
     // Union-find over features: the tree phase only links different components.
-    component_.resize(features_.size());
-    std::iota(component_.begin(), component_.end(), 0);
-    std::vector<char> done(arcs, 0);
-    for (int traced = 0; traced < arcs;) {
-      const bool tree_phase = traced < static_cast<int>(features_.size()) - 1;
+    std::vector<char>& done = done_;
+    for (int traced = prelaid_; traced < arcs;) {
+      const bool tree_phase = components_ > 1;
       int best = -1, runner_up = -1;
       for (int a = 0; a < arcs; ++a) {
         if (done[a] || (tree_phase && root(network_.arcs[a][0]) == root(network_.arcs[a][1]))) continue;
@@ -144,7 +174,7 @@ class Tracer {
     const double median = sorted[k / 2];
     extremity_.assign(k, 0);
     for (int f = 0; f < k; ++f)
-      if (mean[f] > 1.5 * median) {
+      if (mean[f] > 1.5 * median && first_step_[f].empty()) {
         extremity_[f] = 1;
         ++unconnected_extremities_;
       }
@@ -266,6 +296,7 @@ class Tracer {
     first_step_[j][i] = path[path.size() - 2];
     for (int f : {i, j})
       if (extremity_[f] && first_step_[f].size() == 1) --unconnected_extremities_;
+    if (root(i) != root(j)) --components_;
     component_[root(i)] = root(j);
     network_.paths[a] = std::move(path);
   }
@@ -281,6 +312,8 @@ class Tracer {
   std::vector<std::unordered_map<int, int>> first_step_;  // feature -> (neighbour feature -> first path vertex)
   std::unordered_set<int> path_edges_;
   int unconnected_extremities_ = 0;
+  int components_ = 0, prelaid_ = 0;
+  std::vector<char> done_;
   int search_vertices_ = 0;
   int failures_ = 0;
 };
@@ -288,10 +321,21 @@ class Tracer {
 }  // namespace
 
 PathNetwork trace_path_network(EditableMesh& mesh, const std::vector<int>& features, const std::vector<Vec3>& targets,
-                               const std::vector<Triangle>& sphere_triangles, const ProgressSlice& progress) {
+                               const std::vector<Triangle>& sphere_triangles, const ProgressSlice& progress,
+                               const std::vector<std::vector<int>>& prelaid) {
   std::vector<Triangle> layout = sphere_triangles;
-  const int flips = flip_layout_to_shorter_paths(mesh, features, targets, layout);
-  PathNetwork network = Tracer(mesh, features, targets, layout).run(progress);
+  std::vector<std::array<int, 2>> fixed;
+  if (!prelaid.empty()) {
+    std::unordered_map<int, int> feature_of;
+    for (int f = 0; f < static_cast<int>(features.size()); ++f) feature_of[features[f]] = f;
+    for (const auto& path : prelaid)
+      if (feature_of.count(path.front()) && feature_of.count(path.back()))
+        fixed.push_back({feature_of.at(path.front()), feature_of.at(path.back())});
+  }
+  const int flips = flip_layout_to_shorter_paths(mesh, features, targets, layout, fixed);
+  Tracer tracer(mesh, features, targets, layout);
+  for (const auto& path : prelaid) tracer.prelay(path);
+  PathNetwork network = tracer.run(progress);
   network.flips = flips;
   return network;
 }

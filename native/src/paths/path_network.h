@@ -33,7 +33,13 @@ struct PathNetwork {
 // arcs are first flipped where the other diagonal has a shorter surface path.
 // The mesh must be oriented outwards (positive signed volume). Grows `mesh`
 // by the Steiner vertices it needs.
+//
+// `prelaid` paths (mesh vertices from one feature's vertex to another's, for
+// arcs of the triangulation; e.g. hole boundaries) are taken as given, never
+// traced or flipped: they block their vertices and edges and fix the
+// cyclic position of later paths at their ends.
 PathNetwork trace_path_network(EditableMesh& mesh, const std::vector<int>& features, const std::vector<Vec3>& targets,
-                               const std::vector<Triangle>& sphere_triangles, const ProgressSlice& progress);
+                               const std::vector<Triangle>& sphere_triangles, const ProgressSlice& progress,
+                               const std::vector<std::vector<int>>& prelaid = {});
 
 }  // namespace cmaps

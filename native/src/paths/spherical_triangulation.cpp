@@ -77,4 +77,73 @@ std::optional<Vec3> point_to_enclose_origin(const std::vector<Vec3>& points) {
   return std::nullopt;
 }
 
+namespace {
+
+// Whether great-circle arcs ab and cd (each shorter than a half circle) cross
+// at an interior point of both.
+bool arcs_cross(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const Vec3 n1 = a.cross(b), n2 = c.cross(d);
+  const double sc = n1.dot(c), sd = n1.dot(d), ta = n2.dot(a), tb = n2.dot(b);
+  if (!((sc > 0 && sd < 0) || (sc < 0 && sd > 0))) return false;
+  if (!((ta > 0 && tb < 0) || (ta < 0 && tb > 0))) return false;
+  const Vec3 x1 = std::abs(sd) * c + std::abs(sc) * d, x2 = std::abs(tb) * a + std::abs(ta) * b;
+  return x1.dot(x2) > 0;
+}
+
+bool positive(const Vec3& x, const Vec3& y, const Vec3& z) {
+  return x.dot(y.cross(z)) > 1e-12 * (y - x).cross(z - x).norm();
+}
+
+}  // namespace
+
+bool force_edges(const std::vector<Vec3>& points, std::vector<Triangle>& triangles,
+                 const std::vector<std::array<int, 2>>& required) {
+  auto has_edge = [&](int u, int w) {
+    for (const Triangle& t : triangles)
+      for (int k = 0; k < 3; ++k)
+        if (t[k] == u && t[(k + 1) % 3] == w) return true;
+    return false;
+  };
+  auto is_required = [&](int u, int w) {
+    for (const auto& r : required)
+      if ((r[0] == u && r[1] == w) || (r[0] == w && r[1] == u)) return has_edge(u, w);
+    return false;
+  };
+  for (const auto& r : required) {
+    const int u = r[0], w = r[1];
+    for (int flips = 0; !has_edge(u, w); ++flips) {
+      if (flips > 64 * static_cast<int>(triangles.size())) return false;
+      bool flipped = false;
+      std::map<std::pair<int, int>, int> owner;
+      for (int f = 0; f < static_cast<int>(triangles.size()); ++f)
+        for (int k = 0; k < 3; ++k) owner[{triangles[f][k], triangles[f][(k + 1) % 3]}] = f;
+      // Flip the first crossing edge whose quadrilateral is convex; the
+      // order rotates with `flips` so that no pair of flips repeats forever.
+      const int count = static_cast<int>(triangles.size());
+      for (int step = 0; step < count && !flipped; ++step) {
+        const int f = (step + flips) % count;
+        for (int k = 0; k < 3 && !flipped; ++k) {
+          const int i = triangles[f][k], j = triangles[f][(k + 1) % 3], p = triangles[f][(k + 2) % 3];
+          if (i == u || i == w || j == u || j == w) continue;
+          if (!arcs_cross(points[u], points[w], points[i], points[j]) || is_required(i, j)) continue;
+          const auto it = owner.find({j, i});
+          if (it == owner.end()) return false;
+          const int g = it->second;
+          const Triangle& other = triangles[g];
+          const int q =
+              other[0] != i && other[0] != j ? other[0] : other[1] != i && other[1] != j ? other[1] : other[2];
+          if (p == q || owner.count({p, q}) || !positive(points[p], points[i], points[q]) ||
+              !positive(points[q], points[j], points[p]))
+            continue;
+          triangles[f] = {p, i, q};
+          triangles[g] = {q, j, p};
+          flipped = true;
+        }
+      }
+      if (!flipped) return false;
+    }
+  }
+  return true;
+}
+
 }  // namespace cmaps

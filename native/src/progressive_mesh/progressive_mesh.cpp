@@ -43,6 +43,12 @@ class Simplifier {
     locked_ = options.locked.empty() ? std::vector<char>(n, 0) : options.locked;
     if (static_cast<int>(locked_.size()) != n) throw InvalidInput("locked flags do not match the vertex count");
     init_paths(n);
+    chains_of_.assign(n, {});
+    for (int c = 0; c < static_cast<int>(options.chains.size()); ++c)
+      for (int v : options.chains[c]) {
+        if (v < 0 || v >= n) throw InvalidInput("chain refers to a missing vertex");
+        chains_of_[v].push_back(c);
+      }
     init_quadrics(n);
     stamp_.assign(n, 0);
   }
@@ -129,6 +135,20 @@ class Simplifier {
     return p.empty() || std::find(p.begin(), p.end(), v) != p.end();
   }
 
+  // No new edge between two vertices of one chain, unless u lies on it.
+  bool chords_ok(int u, int v, const std::vector<int>& nu) const {
+    if (chains_of_[v].empty()) return true;
+    const std::vector<int> nv = neighbours(v);
+    for (int w : nu) {
+      if (w == v || chains_of_[w].empty() || std::binary_search(nv.begin(), nv.end(), w)) continue;
+      for (int c : chains_of_[v])
+        if (std::find(chains_of_[w].begin(), chains_of_[w].end(), c) != chains_of_[w].end() &&
+            std::find(chains_of_[u].begin(), chains_of_[u].end(), c) == chains_of_[u].end())
+          return false;
+    }
+    return true;
+  }
+
   // Link condition: the only common neighbours of u and v are the apexes of
   // the two triangles on edge uv, which keeps the mesh a manifold.
   bool link_ok(int v, const std::vector<int>& nu) const {
@@ -166,7 +186,7 @@ class Simplifier {
       if (path_allows(u, v)) options.emplace_back(cost(u, v), v);
     std::sort(options.begin(), options.end());
     for (const auto& [c, v] : options) {
-      if (!link_ok(v, nu) || (strict_ && !geometry_ok(u, v))) continue;
+      if (!link_ok(v, nu) || !chords_ok(u, v, nu) || (strict_ && !geometry_ok(u, v))) continue;
       heap_.push({c, u, v, stamp_[u]});
       return;
     }
@@ -236,7 +256,7 @@ class Simplifier {
   std::vector<const std::vector<Vec3>*> geometries_;
   std::vector<Triangle> tris_;
   std::vector<char> face_alive_, vertex_alive_, locked_;
-  std::vector<std::vector<int>> vertex_faces_, path_neighbours_;
+  std::vector<std::vector<int>> vertex_faces_, path_neighbours_, chains_of_;
   std::vector<Quadric> quadrics_;  // vertex-major, one per geometry
   std::vector<unsigned> stamp_;
   std::vector<int> changed_faces_;

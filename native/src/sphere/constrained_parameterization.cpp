@@ -1,6 +1,7 @@
 #include "consistent_maps/constrained_parameterization.h"
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <string>
@@ -9,6 +10,7 @@
 #include "consistent_maps/mesh_check.h"
 #include "consistent_maps/progressive_mesh.h"
 #include "paths/editable_mesh.h"
+#include "paths/mesh_holes.h"
 #include "paths/path_network.h"
 #include "paths/spherical_triangulation.h"
 #include "sphere/sphere_refinement.h"
@@ -45,10 +47,11 @@ void validate_features(const TriangleMesh& mesh, const std::vector<int>& feature
 }
 
 // The vertex farthest from every chosen one: where a free base vertex goes.
-int farthest_vertex(const std::vector<Vec3>& x, const std::vector<int>& chosen) {
+int farthest_vertex(const std::vector<Vec3>& x, const std::vector<int>& chosen, const std::vector<char>& excluded) {
   int best = -1;
   double best_distance = -1;
   for (int v = 0; v < static_cast<int>(x.size()); ++v) {
+    if (excluded[v]) continue;
     double d = std::numeric_limits<double>::infinity();
     for (int c : chosen) d = std::min(d, (x[v] - x[c]).squaredNorm());
     if (d > best_distance) {
@@ -92,20 +95,30 @@ ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mes
                                                          const std::vector<Vec3>& given_targets,
                                                          const SphereOptions& options,
                                                          const ProgressCallback& progress) {
-  require_sphere_topology(mesh);
+  // Holes (thesis 3.5) are closed by a temporary centre vertex each; each
+  // hole must be ringed by at least 3 features.
+  ClosedMesh closed = close_holes(mesh);
   validate_features(mesh, features, given_targets);
   if (options.effort < 0 || options.effort > 2) throw InvalidInput("effort must be 0, 1 or 2");
+  std::vector<std::vector<int>> hole_rings = hole_features(closed, features);
   ConstrainedResult result;
   const int n = static_cast<int>(mesh.vertices.size());
   const int k = static_cast<int>(features.size());
+  const int holes = static_cast<int>(closed.loops.size());
+  const int nc = n + holes;  // vertices of the closed mesh
+  result.holes = holes;
 
   // Work on an outward-oriented, normalized copy, so that the layout on the
   // mesh and on the sphere turn the same way.
-  std::vector<Vec3> positions = normalized_positions(mesh.vertices, mesh.triangles);
-  std::vector<Triangle> triangles = mesh.triangles;
+  std::vector<Vec3> positions = normalized_positions(closed.mesh.vertices, closed.mesh.triangles);
+  std::vector<Triangle> triangles = closed.mesh.triangles;
   const bool inverted = signed_volume({positions, triangles}) < 0;
-  if (inverted)
+  if (inverted) {
     for (Triangle& t : triangles) std::swap(t[1], t[2]);
+    // The fans now run the other way round.
+    for (auto& loop : closed.loops) std::reverse(loop.begin() + 1, loop.end());
+    for (auto& ring : hole_rings) std::reverse(ring.begin() + 1, ring.end());
+  }
 
   // The unconstrained map guides the paths (below) and, without given
   // targets, provides them (step 1 of the thesis); a quick one suffices as a
@@ -114,7 +127,8 @@ ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mes
   if (!given_targets.empty()) guide_options.effort = 0;
   ProgressCallback unconstrained;
   if (progress) unconstrained = [&](double f, const std::string& stage) { return progress(0.3 * f, stage); };
-  const SphereResult guide = spherical_parameterization({mesh.vertices, triangles}, guide_options, unconstrained);
+  const SphereResult guide =
+      spherical_parameterization({closed.mesh.vertices, triangles}, guide_options, unconstrained);
   const double begin = 0.3;
   if (given_targets.empty()) {
     for (int v : features) result.targets.push_back(guide.sphere[v]);
@@ -123,23 +137,102 @@ ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mes
   }
   const auto paths_start = std::chrono::steady_clock::now();
 
-  // Free base vertices until the targets' hull encloses the centre, so every
-  // base triangle is smaller than a hemisphere.
+  // Base vertices: the features, one centre per hole (at the mean of its
+  // features' targets), then free vertices until the hull encloses the
+  // centre of the sphere, so every base triangle is smaller than a hemisphere.
   std::vector<Vec3> points = result.targets;
   std::vector<int> base_vertices = features;
+  std::vector<char> excluded(nc, 0);  // boundary vertices and centres: never auxiliary
+  for (int h = 0; h < holes; ++h) {
+    Vec3 mean = Vec3::Zero();
+    for (int f : hole_rings[h]) mean += result.targets[f];
+    if (!(mean.norm() > 1e-9))
+      throw InvalidInput("the targets of the features ringing hole " + std::to_string(h) + " average to zero");
+    points.push_back(mean.normalized());
+    base_vertices.push_back(closed.centre(h));
+    excluded[closed.centre(h)] = 1;
+    for (int v : closed.loops[h]) excluded[v] = 1;
+  }
   while (const auto extra = point_to_enclose_origin(points)) {
     if (++result.auxiliary_vertices > 8) throw Error("internal error: cannot enclose the centre");
     points.push_back(*extra);
-    base_vertices.push_back(farthest_vertex(guide.sphere, base_vertices));
+    base_vertices.push_back(farthest_vertex(guide.sphere, base_vertices, excluded));
   }
-  const std::vector<Triangle> layout = feature_layout(points, base_vertices, guide.sphere);
+  std::vector<Triangle> layout = feature_layout(points, base_vertices, guide.sphere);
+  // Each hole is a fan on the sphere too: its polygon's edges and spokes.
+  std::vector<std::array<int, 2>> required;
+  for (int h = 0; h < holes; ++h) {
+    const auto& ring = hole_rings[h];
+    for (size_t j = 0; j < ring.size(); ++j) required.push_back({ring[j], ring[(j + 1) % ring.size()]});
+    for (int f : ring) required.push_back({k + h, f});
+  }
+  if (!required.empty()) {
+    if (!force_edges(points, layout, required)) {
+      const auto hull = convex_hull_on_sphere(points);
+      layout = *hull;
+      if (!force_edges(points, layout, required))
+        throw InvalidInput("the targets of the features ringing the holes cannot be joined around the holes "
+                           "without crossing (are they in the order the features run along each hole?)");
+    }
+    std::set<Triangle> faces(layout.begin(), layout.end());
+    auto has = [&](int a, int b, int c) { return faces.count({a, b, c}) || faces.count({b, c, a}) || faces.count({c, a, b}); };
+    for (int h = 0; h < holes; ++h) {
+      const auto& ring = hole_rings[h];
+      for (size_t j = 0; j < ring.size(); ++j)
+        if (!has(k + h, ring[j], ring[(j + 1) % ring.size()]))
+          throw InvalidInput("the targets of the " + std::to_string(ring.size()) + " features ringing hole " +
+                             std::to_string(h) +
+                             " do not enclose an empty region in the order the features run along the hole");
+    }
+  }
 
-  // Paths are traced in the guide's metric: there they follow great-circle
-  // arcs, so they pass features on the same side as the arcs between the
-  // targets do whenever the targets are laid out like the guide (no swirls).
+  // The hole boundaries between consecutive features and the spokes from
+  // the centres to them are given paths; the rest are traced in the guide's
+  // metric, where they follow great-circle arcs, so they pass features on the
+  // same side as the arcs between the targets do whenever the targets are
+  // laid out like the guide (no swirls).
+  std::vector<std::vector<int>> prelaid;
+  RefineExtras extras;
+  for (int h = 0; h < holes; ++h) {
+    const auto& loop = closed.loops[h];
+    std::vector<size_t> at;
+    for (size_t j = 0; j < loop.size(); ++j)
+      for (int f : hole_rings[h])
+        if (features[f] == loop[j]) at.push_back(j);
+    for (size_t j = 0; j < at.size(); ++j) {
+      std::vector<int> chain;
+      for (size_t i = at[j];; i = (i + 1) % loop.size()) {
+        chain.push_back(loop[i]);
+        if (i == at[(j + 1) % at.size()] && chain.size() > 1) break;
+      }
+      prelaid.push_back(chain);
+      extras.arcs.chains.push_back(chain);
+      prelaid.push_back({closed.centre(h), loop[at[j]]});
+    }
+  }
   EditableMesh editable({guide.sphere, triangles});
-  const PathNetwork network =
-      trace_path_network(editable, base_vertices, points, layout, ProgressSlice(progress, "paths", begin, begin + 0.1));
+  if (holes > 0) {
+    // An edge between two non-consecutive vertices of one boundary chain
+    // (e.g. across an ear) would be degenerate on the arc: split it.
+    std::vector<std::vector<std::pair<int, int>>> at(nc);  // vertex -> (chain, position)
+    for (int c = 0; c < static_cast<int>(extras.arcs.chains.size()); ++c)
+      for (int i = 0; i < static_cast<int>(extras.arcs.chains[c].size()); ++i)
+        at[extras.arcs.chains[c][i]].push_back({c, i});
+    auto chord = [&](int a, int b) {
+      if (a >= nc || b >= nc) return false;
+      for (const auto& [ca, ia] : at[a])
+        for (const auto& [cb, ib] : at[b])
+          if (ca == cb && std::abs(ia - ib) != 1) return true;
+      return false;
+    };
+    const int edges = editable.edge_count();
+    std::vector<int> chords;
+    for (int e = 0; e < edges; ++e)
+      if (chord(editable.edge_vertices(e)[0], editable.edge_vertices(e)[1])) chords.push_back(e);
+    for (int e : chords) editable.split_edge(e);
+  }
+  const PathNetwork network = trace_path_network(editable, base_vertices, points, layout,
+                                                 ProgressSlice(progress, "paths", begin, begin + 0.1), prelaid);
   result.retraced_paths = network.retraced;
   result.layout_flips = network.flips;
   result.seconds_paths = seconds_since(paths_start);
@@ -154,6 +247,7 @@ ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mes
   for (const auto& path : network.paths)
     for (size_t i = 0; i + 1 < path.size(); ++i) simplification.path_edges.push_back({path[i], path[i + 1]});
   simplification.target_vertices = static_cast<int>(base_vertices.size());
+  simplification.chains = extras.arcs.chains;
   ProgressCallback simplify_progress;
   if (progress)
     simplify_progress = [&](double f, const std::string& stage) { return progress(begin + 0.1 + 0.1 * f, stage); };
@@ -163,7 +257,9 @@ ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mes
                 " vertices instead of " + std::to_string(base_vertices.size()));
   result.seconds_simplify = seconds_since(simplify_start);
 
-  // The base is the targets' triangulation: place it and refine.
+  // The base is the targets' triangulation: place it and refine. Hole
+  // boundary vertices move only along their arcs; the fans carry no stretch
+  // (only the regularizer), so the holes may shrink.
   const auto optimize_start = std::chrono::steady_clock::now();
   std::vector<Vec3> sphere(refined.vertices.size(), Vec3::Zero());
   for (size_t i = 0; i < base_vertices.size(); ++i) sphere[base_vertices[i]] = points[i];
@@ -175,31 +271,63 @@ ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mes
   }
   std::vector<char> fixed(refined.vertices.size(), 0);
   for (int v : features) fixed[v] = 1;
+  const int faces = static_cast<int>(refined.triangles.size());
+  auto is_fan = [&](int f) { return editable.input_triangle(f) >= closed.input_triangles; };
+  if (holes > 0) {
+    extras.stretch_free_faces.assign(faces, 0);
+    for (int f = 0; f < faces; ++f) extras.stretch_free_faces[f] = is_fan(f);
+    extras.arcs.index(static_cast<int>(refined.vertices.size()));
+  }
   refine_on_sphere(pm, {&refined.vertices}, fixed, options, sphere,
-                   ProgressSlice(progress, "refine", begin + 0.2, 1.0));
+                   ProgressSlice(progress, "refine", begin + 0.2, 1.0), holes > 0 ? &extras : nullptr);
   result.seconds_optimize = seconds_since(optimize_start);
 
-  result.triangles = editable.triangles();
-  for (int f = 0; f < static_cast<int>(result.triangles.size()); ++f)
+  // Output over the input vertices then the Steiner vertices: the centres
+  // (closed-mesh vertices n .. nc - 1) and their fans are left out.
+  const int total = static_cast<int>(sphere.size());
+  auto out = [&](int v) { return v < n ? v : v >= nc ? v - holes : -1; };
+  const int steiner_count = total - nc;
+  for (int f = 0; f < faces; ++f) {
+    Triangle t = editable.triangles()[f];
+    if (inverted) std::swap(t[1], t[2]);
+    if (is_fan(f)) {
+      for (int& v : t) v = v >= n && v < nc ? n + steiner_count + (v - n) : out(v);
+      result.hole_triangles.push_back(t);
+      continue;
+    }
+    for (int& v : t) v = out(v);
+    result.triangles.push_back(t);
     result.input_triangle.push_back(editable.input_triangle(f));
-  if (inverted)
-    for (Triangle& t : result.triangles) std::swap(t[1], t[2]);
-  // Measure on the refined triangulation with original coordinates.
-  TriangleMesh measured{std::vector<Vec3>(sphere.size()), result.triangles};
-  for (int v = 0; v < static_cast<int>(sphere.size()); ++v)
-    measured.vertices[v] = on_surface(editable.surface_point(v), mesh.vertices);
-  // An inverted input maps with the opposite orientation: measure it mirrored.
-  std::vector<Vec3> oriented = sphere;
-  if (inverted)
-    for (Vec3& p : oriented) p.x() = -p.x();
-  result.report = measure_spherical_map(measured, inverted ? oriented : sphere);
-  for (int i = 0; i < k; ++i)
-    result.max_constraint_error = std::max(result.max_constraint_error, (sphere[features[i]] - result.targets[i]).norm());
+  }
+  for (int h = 0; h < holes; ++h) {
+    result.hole_centres_sphere.push_back(sphere[closed.centre(h)]);
+    result.hole_centres_position.push_back(closed.mesh.vertices[closed.centre(h)]);
+    result.hole_features.push_back(hole_rings[h]);
+    if (inverted) std::reverse(result.hole_features.back().begin() + 1, result.hole_features.back().end());
+  }
   result.sphere.assign(sphere.begin(), sphere.begin() + n);
-  for (int v = n; v < static_cast<int>(sphere.size()); ++v) {
+  for (int v = nc; v < total; ++v) {
     const SurfacePoint& p = editable.surface_point(v);
+    for (int w : p.vertices)
+      if (w >= n) throw Error("internal error: a Steiner vertex lies on a hole's temporary triangles");
     result.steiner.push_back({p.vertices, p.weights, sphere[v]});
   }
+  // Measure on the refined triangulation of the input, original coordinates.
+  std::vector<Vec3> out_sphere = result.sphere;
+  TriangleMesh measured{std::vector<Vec3>(mesh.vertices), result.triangles};
+  for (const SteinerVertex& s : result.steiner) {
+    Vec3 x = Vec3::Zero();
+    for (int j = 0; j < 3; ++j)
+      if (s.vertices[j] >= 0) x += s.weights[j] * mesh.vertices[s.vertices[j]];
+    measured.vertices.push_back(x);
+    out_sphere.push_back(s.sphere);
+  }
+  // An inverted input maps with the opposite orientation: measure it mirrored.
+  if (inverted)
+    for (Vec3& p : out_sphere) p.x() = -p.x();
+  result.report = measure_spherical_map(measured, out_sphere);
+  for (int i = 0; i < k; ++i)
+    result.max_constraint_error = std::max(result.max_constraint_error, (sphere[features[i]] - result.targets[i]).norm());
   return result;
 }
 

@@ -56,7 +56,66 @@ void place_split_vertex(const MeshRefinement& mesh, const VertexSplit& s, std::v
   throw Error("internal error: empty kernel at vertex split " + std::to_string(s.removed));
 }
 
+// A chain vertex goes on its arc between its current chain neighbours (one
+// of them the kept vertex), at the middle of the longest valid stretch.
+void place_on_arc(const MeshRefinement& mesh, const ArcChains& arcs, const VertexSplit& s, std::vector<Vec3>& sphere) {
+  const int v = s.removed;
+  const auto [lo, hi] = arcs.neighbours(mesh, v);
+  Vec3 origin, axis;
+  arcs.frame(sphere, arcs.chain_of[v], origin, axis);
+  auto angle = [&](const Vec3& p) { return std::atan2(p.dot(axis), p.dot(origin)); };
+  const double t0 = angle(sphere[lo]), t1 = angle(sphere[hi]);
+  auto valid_at = [&](double f) {
+    const double t = t0 + f * (t1 - t0);
+    sphere[v] = std::cos(t) * origin + std::sin(t) * axis;
+    return star_valid(mesh, sphere, v);
+  };
+  constexpr int kSamples = 64;
+  int best_begin = -1, best_length = 0;
+  for (int i = 1, run = 0; i <= kSamples; ++i) {
+    if (i < kSamples && valid_at(double(i) / kSamples)) {
+      ++run;
+      if (run > best_length) {
+        best_length = run;
+        best_begin = i - run + 1;
+      }
+    } else {
+      run = 0;
+    }
+  }
+  if (best_length > 0 && valid_at((best_begin + 0.5 * (best_length - 1)) / kSamples)) return;
+  // A very thin kernel: close to the kept vertex.
+  const bool kept_low = s.kept == lo;
+  for (double f = 1.0 / kSamples; f > 1e-15; f *= 0.5)
+    if (valid_at(kept_low ? f : 1 - f)) return;
+  throw Error("internal error: empty kernel on a constrained path at vertex split " + std::to_string(v));
+}
+
 }  // namespace
+
+void ArcChains::index(int vertex_count) {
+  chain_of.assign(vertex_count, -1);
+  index_in_chain.assign(vertex_count, -1);
+  for (int c = 0; c < static_cast<int>(chains.size()); ++c)
+    for (int i = 1; i + 1 < static_cast<int>(chains[c].size()); ++i) {
+      chain_of[chains[c][i]] = c;
+      index_in_chain[chains[c][i]] = i;
+    }
+}
+
+std::pair<int, int> ArcChains::neighbours(const MeshRefinement& mesh, int v) const {
+  const std::vector<int>& chain = chains[chain_of[v]];
+  int lo = index_in_chain[v] - 1, hi = index_in_chain[v] + 1;
+  while (lo > 0 && !mesh.vertex_active(chain[lo])) --lo;
+  while (hi + 1 < static_cast<int>(chain.size()) && !mesh.vertex_active(chain[hi])) ++hi;
+  return {chain[lo], chain[hi]};
+}
+
+void ArcChains::frame(const std::vector<Vec3>& sphere, int chain, Vec3& origin, Vec3& axis) const {
+  origin = sphere[chains[chain].front()];
+  const Vec3& end = sphere[chains[chain].back()];
+  axis = (end - origin * origin.dot(end)).normalized();
+}
 
 std::vector<Vec3> normalized_positions(const std::vector<Vec3>& vertices, const std::vector<Triangle>& triangles) {
   double area = 0;
@@ -77,15 +136,20 @@ std::vector<Vec3> normalized_positions(const std::vector<Vec3>& vertices, const 
 
 void refine_on_sphere(const ProgressiveMesh& pm, const std::vector<const std::vector<Vec3>*>& geometries,
                       const std::vector<char>& fixed, const SphereOptions& options, std::vector<Vec3>& sphere,
-                      const ProgressSlice& progress) {
+                      const ProgressSlice& progress, const RefineExtras* extras) {
   if (options.effort < 0 || options.effort > 2) throw InvalidInput("effort must be 0, 1 or 2");
   const Schedule& schedule = kSchedules[options.effort];
   MeshRefinement refinement(pm);
   std::vector<FaceWeights> weights(pm.base_triangles.size());
-  auto update_weights = [&](int f) { weights[f] = face_weights(refinement.triangles()[f], geometries); };
+  auto update_weights = [&](int f) {
+    const bool free = extras && !extras->stretch_free_faces.empty() && extras->stretch_free_faces[f];
+    weights[f] = face_weights(refinement.triangles()[f], geometries, free);
+  };
   for (size_t f = 0; f < weights.size(); ++f) update_weights(f);
   VertexOptimizer optimizer(refinement, weights, sphere, options.threads);
   optimizer.set_fixed(fixed);
+  const ArcChains* arcs = extras && !extras->arcs.chain_of.empty() ? &extras->arcs : nullptr;
+  optimizer.set_arcs(arcs);
   optimizer.optimize_all(schedule.pass_sweeps, schedule.tolerance);
 
   double next_pass = refinement.active_vertex_count() * schedule.growth;
@@ -96,7 +160,10 @@ void refine_on_sphere(const ProgressiveMesh& pm, const std::vector<const std::ve
     update_weights(s.face_left);
     update_weights(s.face_right);
 
-    place_split_vertex(refinement, s, sphere);
+    if (arcs && arcs->constrained(s.removed))
+      place_on_arc(refinement, *arcs, s, sphere);
+    else
+      place_split_vertex(refinement, s, sphere);
     optimizer.optimize_vertex(s.removed, schedule.split_iterations);
     for (int w : refinement.ring(s.removed)) optimizer.optimize_vertex(w, 1);
     optimizer.optimize_vertex(s.removed, 1);

@@ -5,14 +5,17 @@
 
 namespace cmaps {
 
-FaceWeights face_weights(const Triangle& t, const std::vector<const std::vector<Vec3>*>& geometries) {
+FaceWeights face_weights(const Triangle& t, const std::vector<const std::vector<Vec3>*>& geometries,
+                         bool regularizer_only) {
   FaceWeights w{0, 0, 0};
   for (const auto* x : geometries) {
     const Vec3 &m0 = (*x)[t[0]], &m1 = (*x)[t[1]], &m2 = (*x)[t[2]];
     const double area = 0.5 * (m1 - m0).cross(m2 - m0).norm();
-    w[0] += area * (m1 - m2).squaredNorm();
-    w[1] += area * (m2 - m0).squaredNorm();
-    w[2] += area * (m0 - m1).squaredNorm();
+    if (!regularizer_only) {
+      w[0] += area * (m1 - m2).squaredNorm();
+      w[1] += area * (m2 - m0).squaredNorm();
+      w[2] += area * (m0 - m1).squaredNorm();
+    }
     // A thousandth of the weights of an equilateral triangle with the same
     // edge lengths: keeps sliver and zero-area surface triangles (common in
     // scans and coarse levels) from being squashed to nothing on the sphere.

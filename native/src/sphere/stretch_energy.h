@@ -23,7 +23,10 @@ namespace cmaps {
 using FaceWeights = std::array<double, 3>;
 
 // W_i for the surface triangle t, summed over the geometries.
-FaceWeights face_weights(const Triangle& t, const std::vector<const std::vector<Vec3>*>& geometries);
+// With `regularizer_only` (the temporary triangles closing a hole, which may
+// shrink freely on the sphere), only the small regularizing term is kept.
+FaceWeights face_weights(const Triangle& t, const std::vector<const std::vector<Vec3>*>& geometries,
+                         bool regularizer_only = false);
 
 // Energy of one triangle whose corner at p moves, with (p, a, b) counter-
 // clockwise; w = the triangle's weights rotated so that w[0] belongs to p.

@@ -39,8 +39,55 @@ double VertexOptimizer::total_energy() const {
   return energy;
 }
 
+// One-dimensional Newton steps along the vertex's great-circle arc, between
+// its current chain neighbours, with the same kernel rule (energy +inf
+// outside the kernel rejects a step).
+double VertexOptimizer::optimize_on_arc(int v, int iterations) {
+  const auto [lo, hi] = arcs_->neighbours(mesh_, v);
+  Vec3 origin, axis;
+  arcs_->frame(sphere_, arcs_->chain_of[v], origin, axis);
+  auto angle = [&](const Vec3& p) { return std::atan2(p.dot(axis), p.dot(origin)); };
+  auto point = [&](double t) -> Vec3 { return std::cos(t) * origin + std::sin(t) * axis; };
+  const double t_lo = angle(sphere_[lo]), t_hi = angle(sphere_[hi]);
+  double t = angle(sphere_[v]);
+  const Vec3 start = sphere_[v];
+  if (!(t_hi > t_lo) || !(t > t_lo && t < t_hi)) return 0;
+  const double room = std::min(t - t_lo, t_hi - t);
+  auto derivative = [&](double s, double* energy) {
+    Vec3 g = Vec3::Zero();
+    *energy = star_energy(v, point(s), &g);
+    return g.dot(-std::sin(s) * origin + std::cos(s) * axis);
+  };
+  for (int it = 0; it < iterations; ++it) {
+    double e0;
+    const double d = derivative(t, &e0);
+    if (!std::isfinite(e0) || d == 0) break;
+    const double h = 1e-3 * std::min(t - t_lo, t_hi - t);
+    double eh;
+    const double dh = derivative(t + (d > 0 ? -h : h), &eh);
+    const double second = (dh - d) / (d > 0 ? -h : h);
+    double step = std::isfinite(eh) && second > 0 ? -d / second : -(d > 0 ? 1 : -1) * 0.25 * (t_hi - t_lo);
+    // Stay strictly between the neighbours.
+    if (t + step >= t_hi) step = 0.5 * (t_hi - t);
+    if (t + step <= t_lo) step = 0.5 * (t_lo - t);
+    bool accepted = false;
+    for (double f = 1; std::abs(f * step) > 1e-3 * h; f *= 0.5) {
+      const double e = star_energy(v, point(t + f * step), nullptr);
+      if (e <= e0 + 1e-4 * f * step * d) {
+        t += f * step;
+        accepted = true;
+        break;
+      }
+    }
+    if (!accepted) break;
+  }
+  sphere_[v] = point(t);
+  return (sphere_[v] - start).norm() / std::max(1e-300, std::sin(room));
+}
+
 double VertexOptimizer::optimize_vertex(int v, int iterations) {
   if (!fixed_.empty() && fixed_[v]) return 0;
+  if (arcs_ && arcs_->constrained(v)) return optimize_on_arc(v, iterations);
   const Vec3 start = sphere_[v];
   Vec3 p = start;
   // The longest chord to a neighbour caps the step. The clearance, the

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "consistent_maps/progressive_mesh.h"
+#include "sphere/sphere_refinement.h"
 #include "sphere/stretch_energy.h"
 
 namespace cmaps {
@@ -37,12 +38,18 @@ class VertexOptimizer {
   // Vertices that must not move (features), indexed by vertex; may be empty.
   void set_fixed(std::vector<char> fixed) { fixed_ = std::move(fixed); }
 
+  // Vertices restricted to great-circle arcs (may be null); must outlive the optimizer.
+  void set_arcs(const ArcChains* arcs) { arcs_ = arcs; }
+
  private:
   const MeshRefinement& mesh_;
   const std::vector<FaceWeights>& weights_;
   std::vector<Vec3>& sphere_;
   std::vector<char> fixed_;
+  const ArcChains* arcs_ = nullptr;
   int threads_;
+
+  double optimize_on_arc(int v, int iterations);
 };
 
 }  // namespace cmaps
