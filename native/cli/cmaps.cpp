@@ -488,7 +488,7 @@ SetInput read_set(const Arguments& args, Outcome& out) {
     faces.push_back(int(mesh.triangles.size()));
     out.faces_per_input = JsonObject::array(faces);
     try {
-      cmaps::require_sphere_topology(mesh);
+      cmaps::require_sphere_topology(mesh, true);
     } catch (const cmaps::TopologyError& e) {
       throw cmaps::TopologyError(path + ": " + e.what());
     } catch (const cmaps::InvalidInput& e) {

@@ -397,7 +397,7 @@ IntegerArray to_feature_array(const py::handle& data, py::ssize_t rows) {
   return to_integers(array, "features");
 }
 
-// A sequence of (vertices, triangles) pairs, each a closed genus-0 mesh.
+// A sequence of (vertices, triangles) pairs, each a genus-0 mesh, closed or with holes.
 std::vector<cmaps::TriangleMesh> to_meshes(const py::handle& meshes) {
   if (!py::isinstance<py::sequence>(meshes) || py::isinstance<py::str>(meshes))
     raise(PyExc_TypeError, "meshes must be a sequence of (vertices, triangles) pairs");
@@ -409,7 +409,7 @@ std::vector<cmaps::TriangleMesh> to_meshes(const py::handle& meshes) {
       raise(PyExc_TypeError, "meshes[" + std::to_string(i) + "] must be a (vertices, triangles) pair");
     result.push_back(to_mesh(item[py::int_(0)], item[py::int_(1)]));
     try {
-      cmaps::require_sphere_topology(result.back());
+      cmaps::require_sphere_topology(result.back(), true);
     } catch (const cmaps::InvalidInput& e) {
       raise(invalid_mesh_error, "meshes[" + std::to_string(i) + "]: " + e.what());
     }

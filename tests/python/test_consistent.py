@@ -165,10 +165,37 @@ def test_progress_returning_false_cancels(native, meshes, features):
         native.consistent_spherical_parameterization(meshes[:2], features[:2], grid=GRID, progress=progress)
 
 
-def test_faces_with_boundaries_are_not_supported_yet(native):
+def boundary_loops(triangles):
+    """Each boundary loop of a mesh as its vertices in order."""
+    directed = {(a, b) for t in triangles.tolist() for a, b in ((t[0], t[1]), (t[1], t[2]), (t[2], t[0]))}
+    following = {a: b for a, b in directed if (b, a) not in directed}
+    loops = []
+    while following:
+        start = next(iter(following))
+        loop = [start]
+        while following[loop[-1]] != start:
+            loop.append(following.pop(loop[-1]))
+        following.pop(loop[-1])
+        loops.append(loop)
+    return loops
+
+
+def test_faces_with_holes(native):
+    """The expressions (shared vertex order, 2 holes each): 4 features ring each hole, 4 more inside."""
     meshes = [native.read_mesh(str(path)) for path in FACES[:2]]
-    with pytest.raises(native.InvalidMeshError, match=r"meshes\[0\]: mesh has 2 boundary loops"):
-        native.consistent_spherical_parameterization(meshes, np.array([[0, 1, 2]] * 2))
+    vertices, triangles = meshes[0]
+    loops = boundary_loops(triangles)
+    assert len(loops) == 2
+    ring = [loop[i * len(loop) // 4] for loop in loops for i in range(4)]
+    inner = [v for v in farthest_points(vertices, 12) if all(v not in loop for loop in loops)][:4]
+    table = np.tile(ring + inner, (2, 1))
+    result = native.consistent_spherical_parameterization(meshes, table, grid=GRID)
+    for (vertices, _), (sphere, stats, _) in zip(meshes, result["members"]):
+        assert stats["flipped"] == 0 and stats["degenerate"] == 0
+        assert np.abs(sphere[table[0]] - result["feature_locations"]).max() <= 1e-12
+    # With too few features around a hole: one clear message.
+    with pytest.raises(native.InvalidMeshError, match=r"ringed by 2 features"):
+        native.consistent_spherical_parameterization(meshes, np.delete(table, [0, 1], axis=1), grid=GRID)
 
 
 def test_rejects_bad_input(native, meshes, features):
@@ -328,7 +355,7 @@ def test_cli_remeshes_and_geometry_images(native, cli, meshes, features):
     ("none complete", "no input has every feature"),
     ("first incomplete", 'lacks feature "feature 5"'),
     ("torus", "torus.obj: mesh has genus 1"),
-    ("faces", "mesh has 2 boundary loops"),
+    ("faces", "is ringed by 0 features"),
     ("one mesh", "consistent needs at least 2 input meshes, got 1"),
     ("odd remesh", "--remesh expects an even resolution, got 15"),
     ("odd grid", "--grid expects an even resolution, got 31"),

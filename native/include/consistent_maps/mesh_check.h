@@ -38,6 +38,8 @@ std::string summarize(const MeshReport& report);
 // is one closed, manifold, consistently oriented genus-0 triangle mesh with
 // finite coordinates, e.g. "mesh has genus 2 (closed, 1 component);
 // spherical parameterization needs genus 0". Zero-area triangles are allowed.
-void require_sphere_topology(const TriangleMesh& mesh);
+// With `allow_holes`, boundary loops are accepted (a genus-0 surface with
+// holes, as constrained and consistent parameterization take them).
+void require_sphere_topology(const TriangleMesh& mesh, bool allow_holes = false);
 
 }  // namespace cmaps

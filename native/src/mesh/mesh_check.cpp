@@ -224,7 +224,7 @@ std::string summarize(const MeshReport& r) {
   return s.str();
 }
 
-void require_sphere_topology(const TriangleMesh& mesh) {
+void require_sphere_topology(const TriangleMesh& mesh, bool allow_holes) {
   const Analysis a = analyze(mesh);
   const MeshReport& r = a.report;
   const std::string needs = "; spherical parameterization needs ";
@@ -256,7 +256,7 @@ void require_sphere_topology(const TriangleMesh& mesh) {
   if (r.non_manifold_vertices > 0)
     throw TopologyError("mesh has " + plural(r.non_manifold_vertices, "non-manifold vertex") + " (e.g. vertex " +
                         std::to_string(a.first_non_manifold_vertex) + ")" + needs + "a manifold surface");
-  if (r.boundary_loops > 0)
+  if (r.boundary_loops > 0 && !allow_holes)
     throw TopologyError("mesh has " + plural(r.boundary_loops, "boundary loop") + needs +
                         "a closed surface (fill the holes first)");
   if (r.inconsistently_oriented_edges > 0)
@@ -264,7 +264,9 @@ void require_sphere_topology(const TriangleMesh& mesh) {
                         " (e.g. edge " + edge_name(a.inconsistent_edge) + ")" + needs +
                         "consistently oriented triangles");
   if (r.genus != 0)
-    throw TopologyError("mesh has genus " + std::to_string(r.genus) + " (closed, 1 component)" + needs + "genus 0");
+    throw TopologyError("mesh has genus " + std::to_string(r.genus) + " (" +
+                        (r.boundary_loops > 0 ? plural(r.boundary_loops, "boundary loop") : "closed") +
+                        ", 1 component)" + needs + "genus 0");
   // Last: stray vertices are the easiest defect to fix and hide nothing else.
   if (r.referenced_vertices < r.vertices)
     throw InvalidInput("mesh has " + plural(r.vertices - r.referenced_vertices, "unreferenced vertex") +
