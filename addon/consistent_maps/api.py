@@ -21,12 +21,16 @@ import numpy as np
 
 from . import features as _features
 from . import maps, meshdata, morphs, native, preview, results
+from . import pca as _pca
+
 
 class ComputeError(ValueError):
     """The objects cannot be computed (or the result not stored); the message says what to fix."""
 
 
 MapError = maps.MapError  # two objects without a common map, or a missing layer
+PCAError = _pca.PCAError  # objects that are no set of consistent remeshes
+EXPLAINED_VARIANCE = _pca.VARIANCE  # custom property of pca()'s mean object
 FeatureError = _features.FeatureError
 PreviewError = preview.PreviewError
 Cancelled = native.Cancelled
@@ -267,3 +271,11 @@ def transfer(source, target, uv_maps=(), color_attributes=(), normals=False, ver
     what was transferred."""
     from . import transfer as _transfer  # Blender-only
     return _transfer.transfer(source, target, uv_maps, color_attributes, normals, vertex_groups, attributes)
+
+
+def pca(objects, k=3):
+    """The mean shape of consistent remeshes (one connectivity) as a new object "Mean shape" in the
+    collection "Consistent Maps", with a shape key per principal component (the first k) at +3 standard
+    deviations (slider -1 to 1 for -3 to +3 sd), named with the share of variance it explains; the shares
+    are also its custom property cm_explained_variance. Raises PCAError (nothing created)."""
+    return _pca.create(objects, k)

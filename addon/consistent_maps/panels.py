@@ -180,6 +180,9 @@ class CM_PT_results(_Panel, bpy.types.Panel):
         row = layout.row(align=True)
         row.prop(context.scene.consistent_maps, "resolution")
         row.operator("consistent_maps.remesh", text="Remesh", icon='MOD_REMESH')
+        row = layout.row(align=True)
+        row.prop(context.scene.consistent_maps, "components")
+        row.operator("consistent_maps.pca", text="Mean + PCA", icon='SHAPEKEY_DATA')
 
 
 class CM_PT_morph(_Panel, bpy.types.Panel):

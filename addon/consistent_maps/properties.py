@@ -50,6 +50,8 @@ class CM_Settings(bpy.types.PropertyGroup):
                             description="Morph there and back: the target's shape half way, the own at the end")
     transfer_source: PointerProperty(type=bpy.types.Object, poll=_is_mesh, name="Source",
                                      description="The object whose layers are copied onto the active object")
+    components: IntProperty(name="Components", default=3, min=1, max=64,
+                            description="How many principal components the mean shape gets as shape keys")
     show_features: BoolProperty(name="Show Features", default=True, update=_redraw_views,
                                 description="Draw the features of the set in the viewport, with their names")
 

@@ -3,6 +3,8 @@ attribute transfer (accuracy on a set with known correspondence), error paths, a
 
 Run by run_tests.py after test_addon.py, whose helpers it uses.
 """
+import time
+
 import bpy
 import numpy as np
 
@@ -87,7 +89,9 @@ def _relative_errors(source, target):
     """Positions, a point colour and a seamed UV map of source brought onto target through the maps,
     against target's own values: mean error / value range, each."""
     target_co = maps.positions(target.data)
+    start = time.perf_counter()
     key = api.morph(source, target, align='none')
+    print(f"  morph of {len(target_co)} vertices: {time.perf_counter() - start:.2f} s")
     morphed = _get(key.data, "co", 3)
     diagonal = np.linalg.norm(target_co.max(axis=0) - target_co.min(axis=0))
     position = np.linalg.norm(morphed - target_co, axis=1).mean() / diagonal
@@ -329,3 +333,44 @@ def test_render_morph_contact_sheet():
     image.save()
     first, last = sheet[-CELL:, :CELL], sheet[:CELL, -CELL:]
     assert np.abs(first - last).mean() > 0.01, "the last frame differs from the first: the morph moved"
+
+
+# -- database: mean shape and principal components --------------------------------------------------------
+
+def test_pca_of_consistent_remeshes():
+    a, b = _pair()
+    c = with_features(load(BALL, "C", location=(6, 0, 0)))
+    c.data.transform(np.diag([1.3, 1.0, 1.2, 1.0]))
+    api.compute([a, b, c], effort=0)
+    remeshed = api.remesh([a, b, c], 8)
+    positions = np.stack([maps.positions(obj.data) for obj in remeshed])
+    before = [snapshot(obj) for obj in remeshed]
+    select(remeshed)
+    bpy.context.scene.consistent_maps.components = 2
+    assert bpy.ops.consistent_maps.pca() == {'FINISHED'}
+    mean = bpy.data.objects["Mean shape"]
+    assert mean.name in bpy.data.collections["Consistent Maps"].objects
+    assert np.allclose(maps.positions(mean.data), positions.mean(axis=0), atol=1e-5)
+    keys = mean.data.shape_keys.key_blocks
+    assert len(keys) == 3 and keys[1].name.startswith("PC1 (") and keys[1].slider_min == -1
+    shares = list(mean[api.EXPLAINED_VARIANCE])
+    assert shares[0] >= shares[1] > 0 and abs(sum(shares) - 1) < 1e-6, "3 shapes: 2 components explain all"
+    # the members are the mean plus a combination of the components
+    deltas = np.stack([_get(key.data, "co", 3) - maps.positions(mean.data) for key in keys[1:]]).reshape(2, -1)
+    residual = np.linalg.lstsq(deltas.T, (positions - positions.mean(axis=0)).reshape(3, -1).T, rcond=None)[1]
+    assert residual.max() < 1e-6, residual
+    assert api.features(mean) == api.features(remeshed[0]), (api.features(mean), api.features(remeshed[0]))
+    assert [snapshot(obj) for obj in remeshed] == before, "the remeshes are not modified"
+
+
+def test_pca_errors():
+    a, b = _pair()
+    remeshed = api.remesh([a, b], 8)
+    for objects, k, fragment in (([a, remeshed[0]], 1, "connectivity"), (remeshed[:1], 1, "at least 2"),
+                                 (remeshed, 2, "at most 1")):
+        try:
+            api.pca(objects, k)
+            raise AssertionError(f"expected an error with '{fragment}'")
+        except api.PCAError as e:
+            assert fragment in str(e), (fragment, str(e))
+    assert "Mean shape" not in bpy.data.objects
