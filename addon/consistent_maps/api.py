@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import features as _features
-from . import maps, meshdata, morphs, native, preview, results
+from . import blends, connectivity, maps, meshdata, morphs, native, preview, results
 from . import pca as _pca
 
 
@@ -29,7 +29,7 @@ class ComputeError(ValueError):
 
 
 MapError = maps.MapError  # two objects without a common map, or a missing layer
-PCAError = _pca.PCAError  # objects that are no set of consistent remeshes
+RemeshSetError = connectivity.RemeshSetError  # objects that are no consistent remeshes of one connectivity
 EXPLAINED_VARIANCE = _pca.VARIANCE  # custom property of pca()'s mean object
 FeatureError = _features.FeatureError
 PreviewError = preview.PreviewError
@@ -277,5 +277,11 @@ def pca(objects, k=3):
     """The mean shape of consistent remeshes (one connectivity) as a new object "Mean shape" in the
     collection "Consistent Maps", with a shape key per principal component (the first k) at +3 standard
     deviations (slider -1 to 1 for -3 to +3 sd), named with the share of variance it explains; the shares
-    are also its custom property cm_explained_variance. Raises PCAError (nothing created)."""
+    are also its custom property cm_explained_variance. Raises RemeshSetError (nothing created)."""
     return _pca.create(objects, k)
+
+
+def blend(objects):
+    """An n-way blend of consistent remeshes: the new object "Blend" (collection "Consistent Maps") with the
+    first remesh as its basis and a shape key "→ <name>" per other remesh. Raises RemeshSetError."""
+    return blends.create(objects)

@@ -183,6 +183,7 @@ class CM_PT_results(_Panel, bpy.types.Panel):
         row = layout.row(align=True)
         row.prop(context.scene.consistent_maps, "components")
         row.operator("consistent_maps.pca", text="Mean + PCA", icon='SHAPEKEY_DATA')
+        layout.operator("consistent_maps.blend", text="Blend Selected Remeshes", icon='MOD_REMESH')
 
 
 class CM_PT_morph(_Panel, bpy.types.Panel):

@@ -6,35 +6,10 @@ components at +3 standard deviations (sliders from -1 to 1: -3 to +3 sd).
 """
 import numpy as np
 
-from . import features, maps
+from . import connectivity, features, maps
 
 VARIANCE = "cm_explained_variance"
 SPREAD = 3.0  # standard deviations at a key's full strength
-
-
-class PCAError(ValueError):
-    """The objects cannot be analysed together; the message says why."""
-
-
-def _connectivity(mesh):
-    loops = np.empty(len(mesh.loops), dtype=np.int32)
-    mesh.loops.foreach_get("vertex_index", loops)
-    return loops
-
-
-def _problems(objects, k):
-    if any(obj.type != 'MESH' for obj in objects):
-        return ["Only mesh objects (consistent remeshes) can be analysed"]
-    if len(objects) < 2:
-        return ["Principal components need at least 2 consistent remeshes"]
-    first = _connectivity(objects[0].data)
-    found = [f"'{obj.name}' does not share the connectivity of '{objects[0].name}': use consistent remeshes "
-             f"of one computation (Remesh)" for obj in objects[1:]
-             if len(obj.data.vertices) != len(objects[0].data.vertices)
-             or not np.array_equal(_connectivity(obj.data), first)]
-    if not 1 <= k <= len(objects) - 1:
-        found.append(f"{len(objects)} remeshes have at most {len(objects) - 1} principal component(s), not {k}")
-    return found
 
 
 def analyse(positions, k):
@@ -55,9 +30,10 @@ def create(objects, k):
 
     from . import remeshes  # Blender-only, like everything that creates data
     objects = list(objects)
-    found = _problems(objects, k)
-    if found:
-        raise PCAError("\n".join(found))
+    connectivity.check(objects, "Principal components")
+    if not 1 <= k <= len(objects) - 1:
+        raise connectivity.RemeshSetError(
+            f"{len(objects)} remeshes have at most {len(objects) - 1} principal component(s), not {k}")
     mean, components, fraction = analyse(np.stack([maps.positions(obj.data) for obj in objects]), k)
     mesh = objects[0].data.copy()  # the connectivity, and the features: vertex groups live on the mesh
     mesh.name = "Mean shape"

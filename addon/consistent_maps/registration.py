@@ -2,7 +2,7 @@
 import bpy
 from bpy.app.handlers import persistent
 
-from . import (features, job, operators_compute, operators_features, operators_morph, operators_pca,
+from . import (features, job, operators_compute, operators_database, operators_features, operators_morph,
                operators_preview, operators_remesh, operators_set, operators_transfer, overlay, panels, properties)
 
 CLASSES = (
@@ -14,7 +14,7 @@ CLASSES = (
     + operators_remesh.CLASSES
     + operators_morph.CLASSES
     + operators_transfer.CLASSES
-    + operators_pca.CLASSES
+    + operators_database.CLASSES
     + panels.CLASSES
 )
 

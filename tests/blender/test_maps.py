@@ -371,6 +371,20 @@ def test_pca_errors():
         try:
             api.pca(objects, k)
             raise AssertionError(f"expected an error with '{fragment}'")
-        except api.PCAError as e:
+        except api.RemeshSetError as e:
             assert fragment in str(e), (fragment, str(e))
     assert "Mean shape" not in bpy.data.objects
+
+
+def test_blend_of_consistent_remeshes():
+    a, b = _pair()
+    remeshed = api.remesh([a, b], 8)
+    select(remeshed[::-1], active=remeshed[1])
+    assert bpy.ops.consistent_maps.blend() == {'FINISHED'}
+    blend = bpy.data.objects["Blend"]
+    keys = blend.data.shape_keys.key_blocks
+    assert [k.name for k in keys] == ["Basis", "→ A remesh"]
+    assert np.allclose(maps.positions(blend.data), maps.positions(remeshed[1].data))
+    assert np.allclose(_get(keys[1].data, "co", 3), maps.positions(remeshed[0].data))
+    select([a, remeshed[0]])
+    expect_error(bpy.ops.consistent_maps.blend, "does not share the connectivity")
