@@ -285,3 +285,13 @@ def blend(objects):
     """An n-way blend of consistent remeshes: the new object "Blend" (collection "Consistent Maps") with the
     first remesh as its basis and a shape key "→ <name>" per other remesh. Raises RemeshSetError."""
     return blends.create(objects)
+
+
+def bake_texture(source, target, image_size=1024, margin=16):
+    """Texture transfer: a new image (image_size²) holding source's image texture (the first in its
+    materials, at the UV map its node uses) in target's active UV layout, through the common map; Cycles
+    bakes it, padding `margin` pixels beyond the seams. Target and source are not modified. Raises
+    MapError (nothing created) when they have no common map, source has no image texture or target no
+    UV map. Returns the image (not saved: pack or save it)."""
+    from . import bake  # Blender-only
+    return bake.bake(source, target, image_size, margin)

@@ -1,4 +1,4 @@
-"""Copy layers of the chosen source onto the active object through their common map."""
+"""Copy layers of the chosen source onto the active object through their common map, or bake its texture."""
 import bpy
 from bpy.props import EnumProperty, StringProperty
 
@@ -46,4 +46,26 @@ class CM_OT_transfer(bpy.types.Operator):
         return {'FINISHED'}
 
 
-CLASSES = (CM_OT_transfer,)
+class CM_OT_bake_texture(bpy.types.Operator):
+    """Bake the source's image texture into a new image in the active object's UV layout, through the
+    common map (Cycles); the objects are not modified"""
+    bl_idname = "consistent_maps.bake_texture"
+    bl_label = "Bake Texture"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    def execute(self, context):
+        settings = context.scene.consistent_maps
+        source, target = settings.transfer_source, context.active_object
+        if source is None or target is None:
+            self.report({'ERROR'}, "Choose the source, and make the object to bake for the active object")
+            return {'CANCELLED'}
+        try:
+            image = api.bake_texture(source, target, settings.bake_size)
+        except api.MapError as e:
+            self.report({'ERROR'}, str(e))
+            return {'CANCELLED'}
+        self.report({'INFO'}, f"Image '{image.name}' ({image.size[0]} px): save or pack it to keep it")
+        return {'FINISHED'}
+
+
+CLASSES = (CM_OT_transfer, CM_OT_bake_texture)

@@ -50,6 +50,8 @@ class CM_Settings(bpy.types.PropertyGroup):
                             description="Morph there and back: the target's shape half way, the own at the end")
     transfer_source: PointerProperty(type=bpy.types.Object, poll=_is_mesh, name="Source",
                                      description="The object whose layers are copied onto the active object")
+    bake_size: IntProperty(name="Size", default=1024, min=16, max=16384, subtype='PIXEL',
+                           description="Width and height of the baked image")
     components: IntProperty(name="Components", default=3, min=1, max=64,
                             description="How many principal components the mean shape gets as shape keys")
     show_features: BoolProperty(name="Show Features", default=True, update=_redraw_views,

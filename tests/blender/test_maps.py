@@ -388,3 +388,68 @@ def test_blend_of_consistent_remeshes():
     assert np.allclose(_get(keys[1].data, "co", 3), maps.positions(remeshed[0].data))
     select([a, remeshed[0]])
     expect_error(bpy.ops.consistent_maps.blend, "does not share the connectivity")
+
+
+# -- texture transfer -----------------------------------------------------------------------------------------
+
+def _textured(obj, size=64):
+    """A gradient image (red along u, green along v, blue 1 to tell covered pixels) as obj's material."""
+    image = bpy.data.images.new(f"{obj.name} texture", size, size)
+    ramp = (np.arange(size) + 0.5) / size
+    pixels = np.ones((size, size, 4), dtype=np.float32)
+    pixels[..., 0], pixels[..., 1] = ramp[None, :], ramp[:, None]
+    image.pixels.foreach_set(pixels.ravel())
+    material = bpy.data.materials.new(f"{obj.name} material")
+    material.use_nodes = True
+    material.node_tree.nodes.new("ShaderNodeTexImage").image = image
+    obj.data.materials.append(material)
+
+
+def test_bake_texture_between_identical_members_reproduces_the_texture():
+    """Copies of one mesh share their map: the source's texture baked into the target's (equal) UV layout
+    is the texture itself wherever the layout covers the image (margin 0: padding copies across seams)."""
+    source, target = _cactus_pair("cactus0")
+    api.compute([source, target], effort=0)
+    uv = _cylinder_uv(source.data)
+    uv = (uv - uv.min(axis=0)) / np.ptp(uv, axis=0)
+    for obj in (source, target):
+        _new_uv(obj.data, "UVMap", uv)
+    _textured(source)
+    bpy.context.scene.consistent_maps.transfer_source = source
+    bpy.context.scene.consistent_maps.bake_size = 64
+    select([target])
+    before = snapshot(target), snapshot(source), bpy.context.scene.render.engine
+    assert bpy.ops.consistent_maps.bake_texture() == {'FINISHED'}
+    assert bpy.data.images["Cactus other from Cactus 0"].size[:] == (64, 64)
+    baked = api.bake_texture(source, target, 64, margin=0)  # only pixels inside the layout: comparable
+    pixels = np.empty(64 * 64 * 4, dtype=np.float32)
+    baked.pixels.foreach_get(pixels)
+    pixels = pixels.reshape(64, 64, 4)
+    ramp = (np.arange(64) + 0.5) / 64
+    covered = pixels[..., 2] > 0.99
+    error = max(np.abs(pixels[..., 0] - ramp[None, :])[covered].mean(), np.abs(pixels[..., 1] - ramp[:, None])[covered].mean())
+    print(f"  baked texture: {covered.mean() * 100:.0f} % of the pixels covered, mean error {100 * error:.2f} %")
+    assert covered.mean() > 0.3 and error < 0.03, (covered.mean(), error)
+    assert (snapshot(target), snapshot(source), bpy.context.scene.render.engine) == before
+    assert len(bpy.data.objects) == 2, "the temporary bake object is gone"
+
+
+def test_bake_texture_errors():
+    a, b = _pair()
+    images = len(bpy.data.images)
+    before = [snapshot(a), snapshot(b)]
+
+    def refused(fragment):
+        try:
+            api.bake_texture(a, b, 64)
+            raise AssertionError(f"expected '{fragment}'")
+        except api.MapError as e:
+            assert fragment in str(e), str(e)
+    refused("no image texture")
+    refused("no UV map to bake into")
+    _textured(a)
+    _new_uv(b.data, "UVMap", np.zeros((len(b.data.loops), 2)))
+    b.data.vertices[0].co.x += 0.01
+    refused("stale")
+    assert len(bpy.data.images) == images + 1, "no image but the test's own texture"
+    assert snapshot(a)[0] == before[0][0]
