@@ -20,8 +20,8 @@ class CM_OT_transfer(bpy.types.Operator):
     bl_label = "Transfer"
     bl_options = {'REGISTER', 'UNDO'}
 
-    kind: EnumProperty(name="Kind", items=KINDS, default='uv_maps')
-    layer: StringProperty(name="Layer", default="",
+    kind: EnumProperty(name="Kind", items=KINDS, default='uv_maps', options={'SKIP_SAVE'})
+    layer: StringProperty(name="Layer", default="", options={'SKIP_SAVE'},
                           description="The layer to copy; empty: every layer of the kind the source has")
 
     def execute(self, context):
