@@ -5,6 +5,9 @@
     api.compute([head, other_head], effort=1) # same features land on the same sphere points
     sphere = api.sphere(head)                 # (n, 3) numpy array, row i = vertex i
     remeshes = api.remesh([head, other_head], 64)
+    api.morph(head, other_head, align='features')   # shape key "→ Other" on head
+    api.animate_morph(head, 1, 24)
+    api.transfer(other_head, head, uv_maps=["UVMap"])
 
 compute() runs synchronously; the Compute operator runs the same three steps,
 prepare (main thread), run (worker thread) and apply (main thread), without
@@ -14,13 +17,20 @@ import os
 import uuid
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from . import features as _features
-from . import meshdata, native, preview, results
+from . import blends, connectivity, maps, meshdata, morphs, native, preview, results
+from . import pca as _pca
+
 
 class ComputeError(ValueError):
     """The objects cannot be computed (or the result not stored); the message says what to fix."""
 
 
+MapError = maps.MapError  # two objects without a common map, or a missing layer
+RemeshSetError = connectivity.RemeshSetError  # objects that are no consistent remeshes of one connectivity
+EXPLAINED_VARIANCE = _pca.VARIANCE  # custom property of pca()'s mean object
 FeatureError = _features.FeatureError
 PreviewError = preview.PreviewError
 Cancelled = native.Cancelled
@@ -63,8 +73,9 @@ class Task:
 
 @dataclass
 class Outcome:
-    """What a run computed, for apply(): per task (sphere, stats, surface), surface being the
-    (vertices, triangles, sphere) of the map; and the feature locations common to the set."""
+    """What a run computed, for apply(): per task (sphere, stats, surface, refinement), surface being the
+    (vertices, triangles, sphere) of the map and refinement (input triangle of each surface triangle,
+    Steiner vertices, Steiner weights); and the feature locations common to the set."""
     members: list
     feature_names: list
     feature_locations: list = field(default_factory=list)
@@ -136,15 +147,17 @@ def run(tasks, names, *, effort=1, seed=1, threads=None, progress=None):
             sphere_, stats = native.spherical_parameterization(
                 arrays.vertices, arrays.triangles, effort=effort, seed=seed, threads=threads, progress=forward)
             vertices = tasks[0].feature_vertices
-            return Outcome([(sphere_, stats, (arrays.vertices, arrays.triangles, sphere_))], list(names),
-                           [sphere_[v] for v in vertices])
+            unrefined = (np.arange(len(arrays.triangles)), np.empty((0, 3), int), np.empty((0, 3)))
+            return Outcome([(sphere_, stats, (arrays.vertices, arrays.triangles, sphere_), unrefined)],
+                           list(names), [sphere_[v] for v in vertices])
         result = native.consistent_spherical_parameterization(
             [(t.arrays.vertices, t.arrays.triangles) for t in tasks], [t.feature_vertices for t in tasks],
             effort=effort, seed=seed, threads=threads, progress=forward)
     except native.InvalidMeshError as e:
         raise ComputeError(str(e)) from e
     members = [(sphere_, dict(stats, set_seconds=result["seconds"]),
-                (extras["refined_vertices"], extras["triangles"], extras["refined_sphere"]))
+                (extras["refined_vertices"], extras["triangles"], extras["refined_sphere"]),
+                (extras["input_triangle"], extras["steiner_vertices"], extras["steiner_weights"]))
                for sphere_, stats, extras in result["members"]]
     return Outcome(members, list(names), list(result["feature_locations"]))
 
@@ -160,12 +173,12 @@ def apply(tasks, outcome):
         raise ComputeError(f"{', '.join(repr(n) for n in changed)} changed during the computation: "
                            f"nothing was stored, press Compute again")
     token = uuid.uuid4().hex
-    for task, obj, (sphere_, stats, surface) in zip(tasks, objects, outcome.members):
-        results.store(obj.data, sphere_, task.arrays.fingerprint, stats, surface, token)
+    for task, obj, (sphere_, stats, surface, refinement) in zip(tasks, objects, outcome.members):
+        results.store(obj.data, sphere_, task.arrays.fingerprint, stats, surface, refinement, token)
         if preview.is_shown(obj):
             preview.show(obj)
     results.store_set(bpy.context.scene, token, outcome.feature_names, outcome.feature_locations)
-    return {task.name: stats for task, (_, stats, _) in zip(tasks, outcome.members)}
+    return {task.name: member[1] for task, member in zip(tasks, outcome.members)}
 
 
 def compute(objects, *, effort=1, seed=1, threads=None, progress=None):
@@ -201,7 +214,6 @@ def remesh(objects, resolution=64, *, threads=None):
     grid of even `resolution`: resolution^2 + 2 vertices), each feature at the same vertex index on
     all, in the collection "Consistent Maps". The objects are not modified. Returns the new objects."""
     import bpy
-    import numpy as np
 
     from . import remeshes  # Blender-only, like everything that creates data
     objects, scene = list(objects), bpy.context.scene
@@ -233,3 +245,53 @@ def show_sphere(obj, shown=True):
         preview.show(obj)
     else:
         preview.hide(obj)
+
+
+def morph(source, target, align='features'):
+    """Adds (or refreshes) the shape key "→ <target name>" on source: each source vertex where the
+    common map puts it on target, so source takes target's shape with its own mesh, UVs and materials.
+    align: 'none' (target's coordinates as they are), 'bounds' (target's bounding box onto source's,
+    scaled by the diagonals) or 'features' (the least-squares similarity taking target's features onto
+    source's). Both objects need current results of one computed set; raises MapError otherwise (nothing
+    is modified). Returns the shape key."""
+    return morphs.add(source, target, align)
+
+
+def animate_morph(obj, frame_start, frame_end, ping_pong=False, key=None):
+    """Keyframes the value of obj's morph key (by default the last one made; key: its name) from 0 at
+    frame_start to 1 at frame_end, or 0 → 1 → 0 with ping_pong. Returns the shape key."""
+    return morphs.animate(obj, frame_start, frame_end, ping_pong, key)
+
+
+def transfer(source, target, uv_maps=(), color_attributes=(), normals=False, vertex_groups=(), attributes=()):
+    """Copies layers of source onto target through the common map: UV maps (per corner, seams kept),
+    colour attributes (point or corner, byte or float), custom split normals, vertex groups and float
+    attributes (point or corner), by name; target layers of the same names are overwritten. Raises
+    MapError (nothing modified) when the objects have no common map or source lacks a layer. Returns
+    what was transferred."""
+    from . import transfer as _transfer  # Blender-only
+    return _transfer.transfer(source, target, uv_maps, color_attributes, normals, vertex_groups, attributes)
+
+
+def pca(objects, k=3):
+    """The mean shape of consistent remeshes (one connectivity) as a new object "Mean shape" in the
+    collection "Consistent Maps", with a shape key per principal component (the first k) at +3 standard
+    deviations (slider -1 to 1 for -3 to +3 sd), named with the share of variance it explains; the shares
+    are also its custom property cm_explained_variance. Raises RemeshSetError (nothing created)."""
+    return _pca.create(objects, k)
+
+
+def blend(objects):
+    """An n-way blend of consistent remeshes: the new object "Blend" (collection "Consistent Maps") with the
+    first remesh as its basis and a shape key "→ <name>" per other remesh. Raises RemeshSetError."""
+    return blends.create(objects)
+
+
+def bake_texture(source, target, image_size=1024, margin=16):
+    """Texture transfer: a new image (image_size²) holding source's image texture (the first in its
+    materials, at the UV map its node uses) in target's active UV layout, through the common map; Cycles
+    bakes it, padding `margin` pixels beyond the seams. Target and source are not modified. Raises
+    MapError (nothing created) when they have no common map, source has no image texture or target no
+    UV map. Returns the image (not saved: pack or save it)."""
+    from . import bake  # Blender-only
+    return bake.bake(source, target, image_size, margin)

@@ -41,3 +41,9 @@ def consistent_remesh(surfaces, feature_locations, resolution, *, threads):
     """Every (vertices, triangles, sphere) surface sampled on one octahedral grid of even resolution:
     dict with 'triangles' (shared), 'positions' (members, V, 3), 'sphere', 'feature_vertices' (k,)."""
     return _native.consistent_remesh(surfaces, feature_locations, resolution, threads=threads)
+
+
+def sphere_locator(sphere, triangles):
+    """Point location on a parameterization given as a triangulated sphere (covering it once): the object's
+    locate(directions, threads=) gives (triangles (q,), barycentric (q, 3)) of each direction."""
+    return _native.SphereLocator(sphere, triangles)

@@ -1,7 +1,8 @@
-"""Sidebar UI (View3D > Sidebar > Consistent Maps): the set, its features, Compute and results."""
+"""Sidebar UI (View3D > Sidebar > Consistent Maps): the set, its features, Compute, results, morphs and
+transfers."""
 import bpy
 
-from . import features, job, results, status
+from . import features, job, operators_transfer, results, status
 from .properties import set_objects
 
 CATEGORY = "Consistent Maps"
@@ -179,6 +180,52 @@ class CM_PT_results(_Panel, bpy.types.Panel):
         row = layout.row(align=True)
         row.prop(context.scene.consistent_maps, "resolution")
         row.operator("consistent_maps.remesh", text="Remesh", icon='MOD_REMESH')
+        row = layout.row(align=True)
+        row.prop(context.scene.consistent_maps, "components")
+        row.operator("consistent_maps.pca", text="Mean + PCA", icon='SHAPEKEY_DATA')
+        layout.operator("consistent_maps.blend", text="Blend Selected Remeshes", icon='MOD_REMESH')
 
 
-CLASSES = (CM_UL_members, CM_UL_features, CM_PT_main, CM_PT_features, CM_PT_compute, CM_PT_results)
+class CM_PT_morph(_Panel, bpy.types.Panel):
+    """The active object takes a target's shape (shape key), animated over a frame range."""
+    bl_label = "Morph"
+    bl_parent_id = "CM_PT_main"
+    bl_options = {'DEFAULT_CLOSED'}
+
+    def draw(self, context):
+        layout = self.layout
+        settings = context.scene.consistent_maps
+        obj = context.active_object
+        layout.label(text=f"Morph: {obj.name if obj else '(no active object)'}", icon='SHAPEKEY_DATA')
+        layout.prop(settings, "morph_target")
+        layout.prop(settings, "morph_align")
+        layout.operator("consistent_maps.morph", icon='SHAPEKEY_DATA')
+        row = layout.row(align=True)
+        row.prop(settings, "frame_start")
+        row.prop(settings, "frame_end")
+        row = layout.row(align=True)
+        row.prop(settings, "ping_pong")
+        row.operator("consistent_maps.animate_morph", icon='KEYFRAME')
+
+
+class CM_PT_transfer(_Panel, bpy.types.Panel):
+    """Layers of a source copied onto the active object."""
+    bl_label = "Transfer"
+    bl_parent_id = "CM_PT_main"
+    bl_options = {'DEFAULT_CLOSED'}
+
+    def draw(self, context):
+        layout = self.layout
+        obj = context.active_object
+        layout.prop(context.scene.consistent_maps, "transfer_source")
+        layout.label(text=f"Onto: {obj.name if obj else '(no active object)'}", icon='FORWARD')
+        column = layout.column(align=True)
+        for kind, label, _ in operators_transfer.KINDS:
+            column.operator("consistent_maps.transfer", text=label).kind = kind
+        row = layout.row(align=True)
+        row.prop(context.scene.consistent_maps, "bake_size")
+        row.operator("consistent_maps.bake_texture", icon='TEXTURE')
+
+
+CLASSES = (CM_UL_members, CM_UL_features, CM_PT_main, CM_PT_features, CM_PT_compute, CM_PT_results, CM_PT_morph,
+           CM_PT_transfer)

@@ -12,6 +12,12 @@ EFFORT_ITEMS = [
     ('2', "Best", "Least stretch, slowest"),
 ]
 
+ALIGN_ITEMS = [
+    ('features', "Features", "Least-squares rotation, scale and offset taking the target's features onto the own"),
+    ('bounds', "Bounds", "The target's bounding box onto the own"),
+    ('none', "None", "The target's coordinates as they are"),
+]
+
 
 def _is_mesh(_self, obj):
     return obj.type == 'MESH'
@@ -34,6 +40,20 @@ class CM_Settings(bpy.types.PropertyGroup):
                          description="How hard the optimizer works on reducing stretch")
     resolution: IntProperty(name="Resolution", default=64, min=2, max=1024,
                             description="Octahedral grid resolution n of the remeshes (even): n² + 2 vertices")
+    morph_target: PointerProperty(type=bpy.types.Object, poll=_is_mesh, name="Target",
+                                  description="The object whose shape the active object takes")
+    morph_align: EnumProperty(name="Align", items=ALIGN_ITEMS, default='features',
+                              description="How the target's shape is placed onto the active object")
+    frame_start: IntProperty(name="Start", default=1, description="First frame of the morph animation")
+    frame_end: IntProperty(name="End", default=24, description="Last frame of the morph animation")
+    ping_pong: BoolProperty(name="Ping-Pong", default=False,
+                            description="Morph there and back: the target's shape half way, the own at the end")
+    transfer_source: PointerProperty(type=bpy.types.Object, poll=_is_mesh, name="Source",
+                                     description="The object whose layers are copied onto the active object")
+    bake_size: IntProperty(name="Size", default=1024, min=16, max=16384, subtype='PIXEL',
+                           description="Width and height of the baked image")
+    components: IntProperty(name="Components", default=3, min=1, max=64,
+                            description="How many principal components the mean shape gets as shape keys")
     show_features: BoolProperty(name="Show Features", default=True, update=_redraw_views,
                                 description="Draw the features of the set in the viewport, with their names")
 

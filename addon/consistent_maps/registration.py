@@ -2,8 +2,8 @@
 import bpy
 from bpy.app.handlers import persistent
 
-from . import (features, job, operators_compute, operators_features, operators_preview, operators_remesh,
-               operators_set, overlay, panels, properties)
+from . import (features, job, operators_compute, operators_database, operators_features, operators_morph,
+               operators_preview, operators_remesh, operators_set, operators_transfer, overlay, panels, properties)
 
 CLASSES = (
     properties.CLASSES
@@ -12,6 +12,9 @@ CLASSES = (
     + operators_compute.CLASSES
     + operators_preview.CLASSES
     + operators_remesh.CLASSES
+    + operators_morph.CLASSES
+    + operators_transfer.CLASSES
+    + operators_database.CLASSES
     + panels.CLASSES
 )
 

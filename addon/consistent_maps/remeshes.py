@@ -10,16 +10,17 @@ from . import features
 COLLECTION = "Consistent Maps"
 
 
-def _collection(scene):
-    collection = bpy.data.collections.get(COLLECTION) or bpy.data.collections.new(COLLECTION)
-    if scene.collection.children.get(collection.name) is None:
-        scene.collection.children.link(collection)
-    return collection
+def collection(scene):
+    """The collection "Consistent Maps" (created and linked to the scene when missing)."""
+    found = bpy.data.collections.get(COLLECTION) or bpy.data.collections.new(COLLECTION)
+    if scene.collection.children.get(found.name) is None:
+        scene.collection.children.link(found)
+    return found
 
 
 def create(scene, objects, remeshed, names):
     """New objects from the native consistent_remesh result (same order as objects)."""
-    collection = _collection(scene)
+    target = collection(scene)
     triangles = remeshed["triangles"].tolist()
     created = []
     for obj, positions in zip(objects, remeshed["positions"]):
@@ -30,7 +31,7 @@ def create(scene, objects, remeshed, names):
         new.matrix_world = obj.matrix_world.copy()
         for name, vertex in zip(names, remeshed["feature_vertices"]):
             new.vertex_groups.new(name=features.group_name(name)).add([int(vertex)], 1.0, 'REPLACE')
-        collection.objects.link(new)
+        target.objects.link(new)
         created.append(new)
     features.invalidate()
     return created

@@ -6,8 +6,10 @@ from (an edited mesh no longer matches: the result is stale), the numbers of the
 computation, the token of the set computation it belongs to, and a reference to
 its parameterized surface, a hidden mesh (the map is piecewise linear on a
 refinement of the input: input vertices, then Steiner vertices) whose own
-attribute holds the sphere position of each of its vertices. On the scene: the
-set's token and its feature locations on the sphere, by name.
+attribute holds the sphere position of each of its vertices, and whose refinement
+attributes tie it to the input: the input triangle each of its faces lies in, and
+each of its vertices as a weighted sum of (at most three) input vertices. On the
+scene: the set's token and its feature locations on the sphere, by name.
 """
 import numpy as np
 
@@ -17,6 +19,9 @@ STATS = "cm_stats"
 SET = "cm_set"
 SURFACE = "cm_surface"
 LOCATIONS = "cm_feature_locations"
+INPUT_TRIANGLE = "cm_input_triangle"
+INPUT_VERTEX = "cm_input_vertex_{}"  # three INT point attributes, -1 for an unused slot
+INPUT_WEIGHTS = "cm_input_weights"
 
 NONE, CURRENT, STALE = "NONE", "CURRENT", "STALE"
 
@@ -27,6 +32,22 @@ def _write_sphere(mesh, sphere):
         mesh.attributes.remove(old)
     attribute = mesh.attributes.new(ATTRIBUTE, 'FLOAT_VECTOR', 'POINT')
     attribute.data.foreach_set("vector", np.ascontiguousarray(sphere, dtype=np.float32).ravel())
+
+
+def _write(mesh, name, kind, domain, field, values):
+    mesh.attributes.new(name, kind, domain).data.foreach_set(field, np.ascontiguousarray(values).ravel())
+
+
+def _write_refinement(surface, input_count, input_triangle, steiner_vertices, steiner_weights):
+    """Input vertex i is itself (weight 1); Steiner vertex input_count + i lies at its weighted input vertices."""
+    vertices = np.vstack([np.column_stack([np.arange(input_count), np.full((input_count, 2), -1)]),
+                          np.asarray(steiner_vertices).reshape(-1, 3)]).astype(np.int32)
+    weights = np.vstack([np.repeat([[1.0, 0.0, 0.0]], input_count, axis=0),
+                         np.asarray(steiner_weights, dtype=float).reshape(-1, 3)]).astype(np.float32)
+    _write(surface, INPUT_TRIANGLE, 'INT', 'FACE', "value", np.asarray(input_triangle, dtype=np.int32))
+    for k in range(3):
+        _write(surface, INPUT_VERTEX.format(k), 'INT', 'POINT', "value", vertices[:, k])
+    _write(surface, INPUT_WEIGHTS, 'FLOAT_VECTOR', 'POINT', "vector", weights)
 
 
 def _surface_mesh(name, vertices, triangles, sphere):
@@ -46,8 +67,9 @@ def _surface_mesh(name, vertices, triangles, sphere):
     return surface
 
 
-def store(mesh, sphere, fingerprint, stats, surface, token):
-    """Stores one member's result; surface = (vertices, triangles, sphere) of its parameterized surface."""
+def store(mesh, sphere, fingerprint, stats, surface, refinement, token):
+    """Stores one member's result; surface = (vertices, triangles, sphere) of its parameterized surface,
+    refinement = (input triangle of each surface face, Steiner vertices (s, 3), Steiner weights (s, 3))."""
     import bpy
     old = mesh.get(SURFACE)
     _write_sphere(mesh, sphere)
@@ -55,6 +77,7 @@ def store(mesh, sphere, fingerprint, stats, surface, token):
     mesh[STATS] = {k: v for k, v in stats.items() if isinstance(v, (bool, int, float, str))}
     mesh[SET] = token
     mesh[SURFACE] = _surface_mesh(mesh.name, *surface)
+    _write_refinement(mesh[SURFACE], len(sphere), *refinement)
     if old is not None and old.users <= 1:  # only the fake user is left
         bpy.data.meshes.remove(old)
 
@@ -84,6 +107,31 @@ def surface(mesh):
     triangles = np.empty(len(stored.loops), dtype=np.int32)
     stored.loops.foreach_get("vertex_index", triangles)
     return vertices.reshape(-1, 3).astype(np.float64), triangles.reshape(-1, 3), sphere(stored).astype(np.float64)
+
+
+def _read(attributes, name, field, dtype, width):
+    attribute = attributes.get(name)
+    if attribute is None:
+        return None
+    values = np.empty(len(attribute.data) * width, dtype=dtype)
+    attribute.data.foreach_get(field, values)
+    return values.reshape(-1, width) if width > 1 else values
+
+
+def refinement(mesh):
+    """(input triangle of each surface face (m',), input vertices (N, 3) int, weights (N, 3)) of the mesh's
+    parameterized surface: surface vertex i lies at sum_k weights[i, k] * input vertex vertices[i, k]
+    (-1: unused). None when the surface or its refinement (results older than this) is missing."""
+    stored = mesh.get(SURFACE)
+    if stored is None:
+        return None
+    attributes = stored.attributes
+    parts = [_read(attributes, INPUT_TRIANGLE, "value", np.int32, 1),
+             *(_read(attributes, INPUT_VERTEX.format(k), "value", np.int32, 1) for k in range(3)),
+             _read(attributes, INPUT_WEIGHTS, "vector", np.float32, 3)]
+    if any(part is None for part in parts):
+        return None
+    return parts[0], np.column_stack(parts[1:4]), parts[4].astype(np.float64)
 
 
 def stats(mesh):

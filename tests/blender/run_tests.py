@@ -1,4 +1,4 @@
-"""Runs the add-on suite (test_addon.py) in whatever Blender imports this file.
+"""Runs the add-on suite (test_addon.py, then test_maps.py) in whatever Blender imports this file.
 
     blender -b --factory-startup --python-exit-code 1 -P tests/blender/run_tests.py
     .venv-bpy/bin/python tests/blender/run_tests.py          # bpy module from PyPI
@@ -21,13 +21,14 @@ faulthandler.dump_traceback_later(900, exit=True)  # a hung test must not hang t
 import bpy  # noqa: E402
 
 import test_addon  # noqa: E402
+import test_maps  # noqa: E402
 
 
 def main():
     import consistent_maps
     selected = os.environ.get("CMAPS_BLENDER_TESTS", "")
-    tests = [(name, fn) for name, fn in vars(test_addon).items()
-             if name.startswith("test_") and callable(fn) and selected in name]
+    tests = [(name, fn) for module in (test_addon, test_maps) for name, fn in vars(module).items()
+             if name.startswith("test_") and callable(fn) and selected in name and fn.__module__ == module.__name__]
     where = "bpy module" if not bpy.app.binary_path or "site-packages" in bpy.app.binary_path else "Blender"
     print(f"== Consistent Maps add-on tests in {where} {bpy.app.version_string}, {len(tests)} tests")
     consistent_maps.register()

@@ -1,0 +1,84 @@
+"""The maps between computed objects, read from their stored results, and why a pair has none."""
+import numpy as np
+
+from . import mapping, meshdata, results
+
+
+class MapError(ValueError):
+    """Two objects cannot be mapped onto each other (or a layer is missing); the message says what to fix."""
+
+
+def _object_problem(obj):
+    if obj is None or obj.type != 'MESH':
+        return f"'{getattr(obj, 'name', obj)}' is not a mesh object"
+    if obj.mode == 'EDIT':
+        return f"'{obj.name}' is in Edit Mode: leave Edit Mode first"
+    state = results.state(obj.data, meshdata.fingerprint(obj.data))
+    if state == results.STALE:
+        return f"The result of '{obj.name}' is stale (the mesh changed): press Compute again"
+    if state == results.NONE:
+        return f"'{obj.name}' has no result: add it to the set and press Compute"
+    if results.refinement(obj.data) is None:
+        return f"The result of '{obj.name}' predates maps between objects: press Compute again"
+    return None
+
+
+def problems(objects):
+    """Why the objects cannot be mapped onto each other (empty when they can): each must have a current
+    result, all from one computation of a set."""
+    found = [p for p in map(_object_problem, objects) if p]
+    if found:
+        return found
+    if len({obj.name for obj in objects}) < len(objects):
+        return ["An object cannot be mapped onto itself: choose two different objects"]
+    if len({results.set_token(obj.data) for obj in objects}) > 1:
+        names = " and ".join(f"'{obj.name}'" for obj in objects)
+        return [f"{names} were not computed together: put them in one set and press Compute"]
+    return []
+
+
+def check(objects):
+    """Raises MapError listing every problem of problems(objects)."""
+    found = problems(objects)
+    if found:
+        raise MapError("\n".join(found))
+
+
+def triangles(mesh):
+    """(vertices (M, 3), corners (M, 3)) of the mesh's loop triangles, the input triangles of its map."""
+    mesh.calc_loop_triangles()
+    vertices = np.empty(len(mesh.loop_triangles) * 3, dtype=np.int32)
+    mesh.loop_triangles.foreach_get("vertices", vertices)
+    corners = np.empty(len(mesh.loop_triangles) * 3, dtype=np.int32)
+    mesh.loop_triangles.foreach_get("loops", corners)
+    return vertices.reshape(-1, 3), corners.reshape(-1, 3)
+
+
+def parameterization(obj):
+    """The stored map of a checked object as a mapping.Parameterization."""
+    _, refined_triangles, refined_sphere = results.surface(obj.data)
+    input_triangle, input_vertices, input_weights = results.refinement(obj.data)
+    return mapping.Parameterization(refined_sphere, refined_triangles, input_triangle, input_vertices,
+                                    input_weights, triangles(obj.data)[0])
+
+
+def positions(mesh):
+    co = np.empty(len(mesh.vertices) * 3, dtype=np.float64)
+    mesh.vertices.foreach_get("co", co)
+    return co.reshape(-1, 3)
+
+
+def vertex_landing(source, target):
+    """Where each vertex of source lands on target (checked objects)."""
+    return mapping.land(parameterization(target), results.sphere(source.data).astype(np.float64))
+
+
+def corner_landing(source, target):
+    """Where each corner (loop) of target lands on source: from the target corner's own triangle, so
+    per-corner source values are taken from the matching side of a seam."""
+    target_map = parameterization(target)
+    _, corners = triangles(target.data)
+    first = np.empty(len(target.data.loops), dtype=np.int64)
+    first[corners.ravel()] = np.arange(corners.size)  # one loop triangle corner for every loop
+    directions = mapping.corner_directions(target_map).reshape(-1, 3)[first]
+    return mapping.land(parameterization(source), directions)

@@ -1,0 +1,71 @@
+"""Copy layers of the chosen source onto the active object through their common map, or bake its texture."""
+import bpy
+from bpy.props import EnumProperty, StringProperty
+
+from . import api, transfer
+
+KINDS = [
+    ('uv_maps', "UV Maps", "UV maps, per face corner; seams stay seams"),
+    ('color_attributes', "Colours", "Colour attributes on points or face corners"),
+    ('normals', "Normals", "Custom split normals"),
+    ('vertex_groups', "Vertex Groups", "Vertex groups and their weights (not the features)"),
+    ('attributes', "Attributes", "Float attributes on points or face corners"),
+]
+
+
+class CM_OT_transfer(bpy.types.Operator):
+    """Copy layers of the source onto the active object through the common map (same-named layers of the
+    active object are overwritten)"""
+    bl_idname = "consistent_maps.transfer"
+    bl_label = "Transfer"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    kind: EnumProperty(name="Kind", items=KINDS, default='uv_maps', options={'SKIP_SAVE'})
+    layer: StringProperty(name="Layer", default="", options={'SKIP_SAVE'},
+                          description="The layer to copy; empty: every layer of the kind the source has")
+
+    def execute(self, context):
+        source, target = context.scene.consistent_maps.transfer_source, context.active_object
+        if source is None or target is None:
+            self.report({'ERROR'}, "Choose the source, and make the object to receive the layers the active object")
+            return {'CANCELLED'}
+        if self.kind == 'normals':
+            request = {"normals": True}
+        else:
+            names = [self.layer] if self.layer else transfer.layers(source)[self.kind] if source.type == 'MESH' else []
+            if not names:
+                self.report({'ERROR'}, f"'{source.name}' has no {self.kind.replace('_', ' ')} to transfer")
+                return {'CANCELLED'}
+            request = {self.kind: names}
+        try:
+            done = api.transfer(source, target, **request)
+        except api.MapError as e:
+            self.report({'ERROR'}, str(e))
+            return {'CANCELLED'}
+        self.report({'INFO'}, f"From '{source.name}' to '{target.name}': {', '.join(done)}")
+        return {'FINISHED'}
+
+
+class CM_OT_bake_texture(bpy.types.Operator):
+    """Bake the source's image texture into a new image in the active object's UV layout, through the
+    common map (Cycles); the objects are not modified"""
+    bl_idname = "consistent_maps.bake_texture"
+    bl_label = "Bake Texture"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    def execute(self, context):
+        settings = context.scene.consistent_maps
+        source, target = settings.transfer_source, context.active_object
+        if source is None or target is None:
+            self.report({'ERROR'}, "Choose the source, and make the object to bake for the active object")
+            return {'CANCELLED'}
+        try:
+            image = api.bake_texture(source, target, settings.bake_size)
+        except api.MapError as e:
+            self.report({'ERROR'}, str(e))
+            return {'CANCELLED'}
+        self.report({'INFO'}, f"Image '{image.name}' ({image.size[0]} px): save or pack it to keep it")
+        return {'FINISHED'}
+
+
+CLASSES = (CM_OT_transfer, CM_OT_bake_texture)

@@ -1,0 +1,455 @@
+"""Maps between computed objects in real Blender: mapping primitives, morphs and their animation,
+attribute transfer (accuracy on a set with known correspondence), error paths, a rendered morph.
+
+Run by run_tests.py after test_addon.py, whose helpers it uses.
+"""
+import time
+
+import bpy
+import numpy as np
+
+from consistent_maps import api, mapping, maps
+from test_addon import BALL, OUT, ROOT, SHARED, VERSION, expect_error, load, make_set, select, snapshot, with_features
+
+CACTUS = SHARED / "sets" / "cactus"
+
+
+def _pair():
+    """Two balls of different shapes with the same features, computed as one set (fast)."""
+    a = with_features(load(BALL, "A"))
+    b = load(BALL, "B", location=(3, 0, 0))
+    b.data.transform(np.diag([1.0, 1.6, 0.8, 1.0]))
+    with_features(b)
+    make_set([a, b])
+    api.compute([a, b], effort=0)
+    return a, b
+
+
+def _farthest(vertices, count):
+    chosen = [0]
+    distance = np.full(len(vertices), np.inf)
+    while len(chosen) < count:
+        distance = np.minimum(distance, ((vertices - vertices[chosen[-1]]) ** 2).sum(axis=1))
+        chosen.append(int(distance.argmax()))
+    return chosen
+
+
+def _get(collection, field, width, dtype=np.float32):
+    values = np.empty(len(collection) * width, dtype=dtype)
+    collection.foreach_get(field, values)
+    return values.reshape(-1, width) if width > 1 else values
+
+
+def _cylinder_uv(mesh):
+    """Per-corner UVs around the vertical axis (triangles only), with a seam: the corners of a face
+    across it get u + 1, so the same vertex has two UVs there."""
+    co = maps.positions(mesh)
+    centre = (co.min(axis=0) + co.max(axis=0)) / 2
+    loops = _get(mesh.loops, "vertex_index", 1, np.int32)
+    u = (np.arctan2(co[:, 1] - centre[1], co[:, 0] - centre[0]) / (2 * np.pi) + 0.5)[loops].reshape(-1, 3)
+    wraps = (u.max(axis=1) - u.min(axis=1) > 0.5)[:, None] & (u < 0.5)
+    u = np.where(wraps, u + 1, u)
+    return np.column_stack([u.ravel(), co[loops, 2]])
+
+
+def _new_uv(mesh, name, uv):
+    mesh.uv_layers.new(name=name).data.foreach_set("uv", uv.astype(np.float32).ravel())
+
+
+def _colours(co):
+    rgb = (co - co.min(axis=0)) / (co.max(axis=0) - co.min(axis=0))
+    return np.hstack([rgb, np.ones((len(rgb), 1))]).astype(np.float32)
+
+
+# -- mapping primitives ---------------------------------------------------------------------------
+
+def test_vertex_landing_is_a_convex_combination_on_the_target():
+    a, b = _pair()
+    landing = maps.vertex_landing(a, b)
+    triangles, _ = maps.triangles(b.data)
+    assert landing.triangle.shape == (len(a.data.vertices),)
+    assert landing.triangle.min() >= 0 and landing.triangle.max() < len(triangles)
+    assert (landing.barycentric >= 0).all() and np.allclose(landing.barycentric.sum(axis=1), 1)
+    # features land on the features (same sphere point): the mapped feature is the target's feature vertex
+    mapped = mapping.at_vertices(landing, triangles, maps.positions(b.data))
+    for name, vertex in api.features(a).items():
+        assert np.allclose(mapped[vertex], b.data.vertices[api.features(b)[name]].co, atol=1e-4), name
+
+
+def test_corner_landing_covers_every_corner():
+    a, b = _pair()
+    landing = maps.corner_landing(a, b)
+    assert landing.triangle.shape == (len(b.data.loops),)
+    assert np.allclose(landing.barycentric.sum(axis=1), 1)
+
+
+# -- accuracy on a set with known correspondence (vertex i <-> vertex i) ------------------------------
+
+def _relative_errors(source, target):
+    """Positions, a point colour and a seamed UV map of source brought onto target through the maps,
+    against target's own values: mean error / value range, each."""
+    target_co = maps.positions(target.data)
+    start = time.perf_counter()
+    key = api.morph(source, target, align='none')
+    print(f"  morph of {len(target_co)} vertices: {time.perf_counter() - start:.2f} s")
+    morphed = _get(key.data, "co", 3)
+    diagonal = np.linalg.norm(target_co.max(axis=0) - target_co.min(axis=0))
+    position = np.linalg.norm(morphed - target_co, axis=1).mean() / diagonal
+
+    truth_rgba = _colours(maps.positions(source.data))
+    source.data.attributes.new("where", 'FLOAT_COLOR', 'POINT').data.foreach_set("color", truth_rgba.ravel())
+    truth_uv = _cylinder_uv(source.data)  # the same per corner on target: shared connectivity
+    _new_uv(source.data, "cylinder", truth_uv)
+    api.transfer(source, target, uv_maps=["cylinder"], color_attributes=["where"])
+    rgba = _get(target.data.color_attributes["where"].data, "color", 4)
+    colour = np.abs(rgba[:, :3] - truth_rgba[:, :3]).mean()  # channels span [0, 1]
+    uv = _get(target.data.uv_layers["cylinder"].data, "uv", 2)
+    uv_range = truth_uv.max(axis=0) - truth_uv.min(axis=0)
+    uv_error = (np.abs(uv - truth_uv) / uv_range).mean(axis=0).max()
+    return position, colour, uv_error
+
+
+def _cactus_pair(other):
+    source, target = load(CACTUS / "cactus0.ply", "Cactus 0"), load(CACTUS / f"{other}.ply", "Cactus other")
+    for index, vertex in enumerate(_farthest(maps.positions(source.data), 10)):
+        api.add_feature(source, f"f{index}", vertex)
+        api.add_feature(target, f"f{index}", vertex)
+    return source, target
+
+
+def test_cactus_transfer_reproduces_the_targets_own_values():
+    """Cactus poses share vertex order: through maps computed from 10 features, positions, a point colour
+    and a UV map with a seam carried from one pose to another match the other's own (mean errors printed).
+    The error is the maps' (stretch-minimizing maps of two poses are not vertex i <-> i; effort 0 doubles
+    it), not the transfer's: test_transfer_between_identical_members_is_exact."""
+    source, target = _cactus_pair("cactus3")
+    api.compute([source, target], effort=2)
+    position, colour, uv = _relative_errors(source, target)
+    print(f"  cactus0 -> cactus3 mean error: positions {100 * position:.2f} % of the diagonal, "
+          f"colour {100 * colour:.2f} %, UV {100 * uv:.2f} % of the range")
+    assert position < 0.03 and colour < 0.05 and uv < 0.06, (position, colour, uv)
+
+
+def test_transfer_between_identical_members_is_exact():
+    """Two copies of one mesh get one map: positions, colours and the seamed UV map come out unchanged."""
+    source, target = _cactus_pair("cactus0")
+    api.compute([source, target], effort=0)
+    position, colour, uv = _relative_errors(source, target)
+    print(f"  cactus0 -> copy mean error: positions {100 * position:.4f} %, colour {100 * colour:.4f} %, "
+          f"UV {100 * uv:.4f} %")
+    assert position < 1e-3 and colour < 1e-3 and uv < 1e-3, (position, colour, uv)
+
+
+# -- morphs -------------------------------------------------------------------------------------------
+
+def test_morph_operator_adds_the_key_in_the_targets_shape():
+    a, b = _pair()
+    bpy.context.scene.consistent_maps.morph_target = b
+    select([a])
+    before = snapshot(b)
+    for align in ('features', 'bounds', 'none'):
+        bpy.context.scene.consistent_maps.morph_align = align
+        assert bpy.ops.consistent_maps.morph() == {'FINISHED'}
+        keys = a.data.shape_keys.key_blocks
+        assert [k.name for k in keys] == ["Basis", "→ B"], "one key, refreshed"
+        co = _get(keys["→ B"].data, "co", 3)
+        assert co.shape == (len(a.data.vertices), 3) and np.isfinite(co).all()
+        extent = co.max(axis=0) - co.min(axis=0)
+        # B is A stretched by (1, 1.6, 0.8): the morph has B's proportions, A's size unless 'none'
+        assert np.allclose(extent / extent[0], [1, 1.6, 0.8], atol=0.05), (align, extent)
+    assert keys["→ B"].value == 0.0, "the morph starts off"
+    assert snapshot(b) == before, "the target is not modified"
+    assert api.sphere(a) is not None, "shape keys leave the result current"
+
+
+def test_morph_aligned_by_features_undoes_a_rotation():
+    """A target turned by 90 degrees and twice as large: aligned by features, the morph has the target's
+    proportions in the source's frame, at the source's scale; 'none' keeps the turn (x and y swapped) and
+    the size."""
+    a, b = _pair()
+    b.data.transform(np.array([[0, -1, 0, 0], [1, 0, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1.0]]) @ np.diag([2, 2, 2, 1.0]))
+    api.compute([a, b], effort=0)
+    extents = {}
+    for align, proportions in (('features', [1, 1.6, 0.8]), ('none', [1, 0.625, 0.5])):
+        extents[align] = np.ptp(_get(api.morph(a, b, align=align).data, "co", 3), axis=0)
+        assert np.allclose(extents[align] / extents[align][0], proportions, atol=0.1), (align, extents[align])
+    assert extents['none'].max() > 1.8 * extents['features'].max(), extents
+
+
+def test_animate_morph_keyframes_the_value():
+    a, b = _pair()
+    key = api.morph(a, b)
+    scene = bpy.context.scene
+    settings = scene.consistent_maps
+    settings.frame_start, settings.frame_end = 1, 24
+    select([a])
+    assert bpy.ops.consistent_maps.animate_morph() == {'FINISHED'}
+    curve = a.data.shape_keys.animation_data.action.fcurves.find(key.path_from_id("value"))
+    assert [tuple(p.co) for p in curve.keyframe_points] == [(1.0, 0.0), (24.0, 1.0)]
+    scene.frame_set(24)
+    assert abs(key.value - 1) < 1e-6
+    api.animate_morph(a, 10, 30, ping_pong=True)
+    curve = a.data.shape_keys.animation_data.action.fcurves.find(key.path_from_id("value"))
+    assert [tuple(p.co) for p in curve.keyframe_points] == [(10.0, 0.0), (20.0, 1.0), (30.0, 0.0)], "replaced"
+    scene.frame_set(20)
+    assert abs(key.value - 1) < 1e-6
+    scene.frame_set(30)
+    assert abs(key.value) < 1e-6
+
+
+# -- transfer -------------------------------------------------------------------------------------------
+
+def test_transfer_operator_copies_every_kind():
+    a, b = _pair()
+    mesh = a.data
+    co = maps.positions(mesh)
+    loops = _get(mesh.loops, "vertex_index", 1, np.int32)
+    _new_uv(mesh, "UVMap", co[loops, :2])
+    mesh.color_attributes.new("paint", 'BYTE_COLOR', 'CORNER').data.foreach_set("color", _colours(co)[loops].ravel())
+    mesh.attributes.new("height", 'FLOAT', 'POINT').data.foreach_set("value", co[:, 2].astype(np.float32))
+    group = a.vertex_groups.new(name="top")
+    group.add([int(i) for i in np.flatnonzero(co[:, 2] > 0.5)], 1.0, 'REPLACE')
+    bpy.context.scene.consistent_maps.transfer_source = a
+    select([b])
+    for kind in ('uv_maps', 'color_attributes', 'vertex_groups', 'attributes', 'normals'):
+        assert bpy.ops.consistent_maps.transfer(kind=kind) == {'FINISHED'}, kind
+    target = b.data
+    assert "UVMap" in target.uv_layers and len(target.uv_layers["UVMap"].data) == len(target.loops)
+    paint = target.color_attributes["paint"]
+    assert paint.domain == 'CORNER' and paint.data_type == 'BYTE_COLOR'
+    height = _get(target.attributes["height"].data, "value", 1)
+    # B is A stretched and the maps are close to vertex i <-> i (0.97 measured with 3 features)
+    assert np.corrcoef(height, maps.positions(target)[:, 2])[0, 1] > 0.9
+    assert [g.name for g in b.vertex_groups] == ["CM:tip", "CM:left", "CM:right", "top"], "features not copied"
+    assert target.has_custom_normals
+    assert api.sphere(b) is not None, "layers leave the result current"
+
+
+def test_transfer_errors_leave_everything_untouched():
+    a, b = _pair()
+    c = with_features(load(BALL, "C"))
+    api.compute([c], effort=0)  # a computation of its own: no common map with A
+    before = [snapshot(obj) for obj in (a, b, c)] + [len(b.data.uv_layers)]
+    cases = [((a, c), {"uv_maps": ()}, "not computed together"),
+             ((a, b), {"uv_maps": ["nothing"]}, "has no UV map 'nothing'"),
+             ((a, b), {"color_attributes": ["nothing"]}, "has no colour attribute"),
+             ((a, b), {"vertex_groups": ["nothing"]}, "has no vertex group"),
+             ((a, b), {"attributes": ["cm_sphere"]}, "internal"),
+             ((a, a), {}, "onto itself")]
+    for (source, target), layers, fragment in cases:
+        try:
+            api.transfer(source, target, **layers)
+            raise AssertionError(f"expected an error with '{fragment}'")
+        except api.MapError as e:
+            assert fragment in str(e), (fragment, str(e))
+    bpy.context.scene.consistent_maps.transfer_source = a
+    select([b])
+    expect_error(bpy.ops.consistent_maps.transfer, "no uv maps", kind='uv_maps')
+    assert [snapshot(obj) for obj in (a, b, c)] + [len(b.data.uv_layers)] == before
+
+
+def test_morph_errors_leave_everything_untouched():
+    a, b = _pair()
+    c = with_features(load(BALL, "C"))
+    settings = bpy.context.scene.consistent_maps
+    settings.morph_target = c
+    select([a])
+    before = [snapshot(obj) for obj in (a, b, c)]
+    expect_error(bpy.ops.consistent_maps.morph, "has no result")
+    expect_error(bpy.ops.consistent_maps.animate_morph, "no morph key")
+    try:
+        api.morph(a, b, 'sideways')
+        raise AssertionError("bad alignment must be refused")
+    except api.MapError as e:
+        assert "Unknown alignment" in str(e)
+    b.data.vertices[0].co.x += 0.01  # B's result is stale now
+    before = [snapshot(obj) for obj in (a, b, c)]
+    settings.morph_target = b
+    expect_error(bpy.ops.consistent_maps.morph, "stale")
+    assert [snapshot(obj) for obj in (a, b, c)] == before
+
+
+# -- visual check ---------------------------------------------------------------------------------------
+
+SHEET_COLUMNS, SHEET_ROWS, CELL = 6, 4, 200
+
+
+def _extreme_features(obj):
+    """Top, bottom, front, back, left, right: the extreme vertices along the axes (both meshes are y-up)."""
+    co = maps.positions(obj.data)
+    for name, axis, sign in (("top", 1, 1), ("bottom", 1, -1), ("front", 2, 1), ("back", 2, -1),
+                             ("left", 0, -1), ("right", 0, 1)):
+        api.add_feature(obj, name, int(np.argmax(sign * co[:, axis])))
+
+
+def _frame_pixels(scene, path):
+    scene.render.filepath = str(path)
+    bpy.ops.render.render(write_still=True)
+    image = bpy.data.images.load(str(path))
+    pixels = np.empty(CELL * CELL * 4, dtype=np.float32)
+    image.pixels.foreach_get(pixels)
+    bpy.data.images.remove(image)
+    return pixels.reshape(CELL, CELL, 4)  # rows bottom to top
+
+
+def test_render_morph_contact_sheet():
+    """The shipped Spot morphing into the shipped penguin over 24 frames (Workbench, coloured by Spot's
+    original position): out/blender/morph_sheet-<version>.png, frames left to right, top to bottom."""
+    spot = load(ROOT / "examples" / "meshes" / "spot_low.obj", "Spot")
+    penguin = load(ROOT / "examples" / "meshes" / "penguin.obj", "Penguin")
+    for obj in (spot, penguin):
+        _extreme_features(obj)
+    api.compute([spot, penguin], effort=0)
+    api.morph(spot, penguin, align='bounds')
+    api.animate_morph(spot, 1, SHEET_COLUMNS * SHEET_ROWS)
+    spot.data.attributes.new("where", 'FLOAT_COLOR', 'POINT').data.foreach_set(
+        "color", _colours(maps.positions(spot.data)).ravel())
+    spot.data.attributes.active_color = spot.data.attributes["where"]
+    spot.rotation_euler = (np.pi / 2, 0, -3 * np.pi / 4)
+    penguin.hide_render = True
+    scene = bpy.context.scene
+    camera = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
+    scene.collection.objects.link(camera)
+    camera.data.type, camera.data.ortho_scale = 'ORTHO', 2.6
+    camera.location, camera.rotation_euler = (0, -5, 0.1), (np.pi / 2, 0, 0)
+    scene.camera = camera
+    scene.render.engine = 'BLENDER_WORKBENCH'
+    scene.display.shading.light = 'STUDIO'
+    scene.display.shading.color_type = 'VERTEX'
+    scene.render.resolution_x = scene.render.resolution_y = CELL
+    scene.render.image_settings.file_format = 'PNG'
+    OUT.mkdir(parents=True, exist_ok=True)
+    sheet = np.zeros((SHEET_ROWS * CELL, SHEET_COLUMNS * CELL, 4), dtype=np.float32)
+    for frame in range(1, SHEET_COLUMNS * SHEET_ROWS + 1):
+        scene.frame_set(frame)
+        row, column = divmod(frame - 1, SHEET_COLUMNS)
+        top = (SHEET_ROWS - 1 - row) * CELL  # image rows run bottom to top
+        sheet[top:top + CELL, column * CELL:(column + 1) * CELL] = _frame_pixels(scene, OUT / "morph_frame.png")
+    (OUT / "morph_frame.png").unlink()
+    image = bpy.data.images.new("morph sheet", SHEET_COLUMNS * CELL, SHEET_ROWS * CELL, alpha=True)
+    image.pixels.foreach_set(sheet.ravel())
+    image.filepath_raw = str(OUT / f"morph_sheet-{VERSION}.png")
+    image.file_format = 'PNG'
+    image.save()
+    first, last = sheet[-CELL:, :CELL], sheet[:CELL, -CELL:]
+    assert np.abs(first - last).mean() > 0.01, "the last frame differs from the first: the morph moved"
+
+
+# -- database: mean shape and principal components --------------------------------------------------------
+
+def test_pca_of_consistent_remeshes():
+    a, b = _pair()
+    c = with_features(load(BALL, "C", location=(6, 0, 0)))
+    c.data.transform(np.diag([1.3, 1.0, 1.2, 1.0]))
+    api.compute([a, b, c], effort=0)
+    remeshed = api.remesh([a, b, c], 8)
+    positions = np.stack([maps.positions(obj.data) for obj in remeshed])
+    before = [snapshot(obj) for obj in remeshed]
+    select(remeshed)
+    bpy.context.scene.consistent_maps.components = 2
+    assert bpy.ops.consistent_maps.pca() == {'FINISHED'}
+    mean = bpy.data.objects["Mean shape"]
+    assert mean.name in bpy.data.collections["Consistent Maps"].objects
+    assert np.allclose(maps.positions(mean.data), positions.mean(axis=0), atol=1e-5)
+    keys = mean.data.shape_keys.key_blocks
+    assert len(keys) == 3 and keys[1].name.startswith("PC1 (") and keys[1].slider_min == -1
+    shares = list(mean[api.EXPLAINED_VARIANCE])
+    assert shares[0] >= shares[1] > 0 and abs(sum(shares) - 1) < 1e-6, "3 shapes: 2 components explain all"
+    # the members are the mean plus a combination of the components
+    deltas = np.stack([_get(key.data, "co", 3) - maps.positions(mean.data) for key in keys[1:]]).reshape(2, -1)
+    residual = np.linalg.lstsq(deltas.T, (positions - positions.mean(axis=0)).reshape(3, -1).T, rcond=None)[1]
+    assert residual.max() < 1e-6, residual
+    assert api.features(mean) == api.features(remeshed[0]), (api.features(mean), api.features(remeshed[0]))
+    assert [snapshot(obj) for obj in remeshed] == before, "the remeshes are not modified"
+
+
+def test_pca_errors():
+    a, b = _pair()
+    remeshed = api.remesh([a, b], 8)
+    for objects, k, fragment in (([a, remeshed[0]], 1, "connectivity"), (remeshed[:1], 1, "at least 2"),
+                                 (remeshed, 2, "at most 1")):
+        try:
+            api.pca(objects, k)
+            raise AssertionError(f"expected an error with '{fragment}'")
+        except api.RemeshSetError as e:
+            assert fragment in str(e), (fragment, str(e))
+    assert "Mean shape" not in bpy.data.objects
+
+
+def test_blend_of_consistent_remeshes():
+    a, b = _pair()
+    remeshed = api.remesh([a, b], 8)
+    select(remeshed[::-1], active=remeshed[1])
+    assert bpy.ops.consistent_maps.blend() == {'FINISHED'}
+    blend = bpy.data.objects["Blend"]
+    keys = blend.data.shape_keys.key_blocks
+    assert [k.name for k in keys] == ["Basis", "→ A remesh"]
+    assert np.allclose(maps.positions(blend.data), maps.positions(remeshed[1].data))
+    assert np.allclose(_get(keys[1].data, "co", 3), maps.positions(remeshed[0].data))
+    select([a, remeshed[0]])
+    expect_error(bpy.ops.consistent_maps.blend, "does not share the connectivity")
+
+
+# -- texture transfer -----------------------------------------------------------------------------------------
+
+def _textured(obj, size=64):
+    """A gradient image (red along u, green along v, blue 1 to tell covered pixels) as obj's material."""
+    image = bpy.data.images.new(f"{obj.name} texture", size, size)
+    ramp = (np.arange(size) + 0.5) / size
+    pixels = np.ones((size, size, 4), dtype=np.float32)
+    pixels[..., 0], pixels[..., 1] = ramp[None, :], ramp[:, None]
+    image.pixels.foreach_set(pixels.ravel())
+    material = bpy.data.materials.new(f"{obj.name} material")
+    material.use_nodes = True
+    material.node_tree.nodes.new("ShaderNodeTexImage").image = image
+    obj.data.materials.append(material)
+
+
+def test_bake_texture_between_identical_members_reproduces_the_texture():
+    """Copies of one mesh share their map: the source's texture baked into the target's (equal) UV layout
+    is the texture itself wherever the layout covers the image (margin 0: padding copies across seams)."""
+    source, target = _cactus_pair("cactus0")
+    api.compute([source, target], effort=0)
+    uv = _cylinder_uv(source.data)
+    uv = (uv - uv.min(axis=0)) / np.ptp(uv, axis=0)
+    for obj in (source, target):
+        _new_uv(obj.data, "UVMap", uv)
+    _textured(source)
+    bpy.context.scene.consistent_maps.transfer_source = source
+    bpy.context.scene.consistent_maps.bake_size = 64
+    select([target])
+    before = snapshot(target), snapshot(source), bpy.context.scene.render.engine
+    assert bpy.ops.consistent_maps.bake_texture() == {'FINISHED'}
+    assert bpy.data.images["Cactus other from Cactus 0"].size[:] == (64, 64)
+    baked = api.bake_texture(source, target, 64, margin=0)  # only pixels inside the layout: comparable
+    pixels = np.empty(64 * 64 * 4, dtype=np.float32)
+    baked.pixels.foreach_get(pixels)
+    pixels = pixels.reshape(64, 64, 4)
+    ramp = (np.arange(64) + 0.5) / 64
+    covered = pixels[..., 2] > 0.99
+    error = max(np.abs(pixels[..., 0] - ramp[None, :])[covered].mean(), np.abs(pixels[..., 1] - ramp[:, None])[covered].mean())
+    print(f"  baked texture: {covered.mean() * 100:.0f} % of the pixels covered, mean error {100 * error:.2f} %")
+    assert covered.mean() > 0.3 and error < 0.03, (covered.mean(), error)
+    assert (snapshot(target), snapshot(source), bpy.context.scene.render.engine) == before
+    assert len(bpy.data.objects) == 2, "the temporary bake object is gone"
+
+
+def test_bake_texture_errors():
+    a, b = _pair()
+    images = len(bpy.data.images)
+    before = [snapshot(a), snapshot(b)]
+
+    def refused(fragment):
+        try:
+            api.bake_texture(a, b, 64)
+            raise AssertionError(f"expected '{fragment}'")
+        except api.MapError as e:
+            assert fragment in str(e), str(e)
+    refused("no image texture")
+    refused("no UV map to bake into")
+    _textured(a)
+    _new_uv(b.data, "UVMap", np.zeros((len(b.data.loops), 2)))
+    b.data.vertices[0].co.x += 0.01
+    refused("stale")
+    assert len(bpy.data.images) == images + 1, "no image but the test's own texture"
+    assert snapshot(a)[0] == before[0][0]
