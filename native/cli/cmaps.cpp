@@ -24,6 +24,7 @@
 #include "consistent_maps/constrained_parameterization.h"
 #include "consistent_maps/errors.h"
 #include "consistent_maps/geometry_image.h"
+#include "consistent_maps/intersurface_map.h"
 #include "consistent_maps/mesh_check.h"
 #include "consistent_maps/mesh_io.h"
 #include "consistent_maps/spherical_parameterization.h"
@@ -42,6 +43,7 @@ const char* const kUsage = R"(usage:
                     [--seed N] [--effort 0|1|2] [--threads N] [--json]
   cmaps consistent IN IN ... --features FILE -o DIR [--remesh N] [--grid N] [--first K]
                    [--seed N] [--effort 0|1|2] [--threads N] [--json]
+  cmaps intersurface A B [--features FILE] -o DIR [--seed N] [--effort 0|1|2] [--threads N] [--json]
   cmaps --help | --version
 
 commands:
@@ -68,12 +70,22 @@ commands:
            geometry images DIR/<k>.geometry.npy, DIR/<k>.geometry.png,
            DIR/<k>.normals.npy and DIR/remesh_features.json (name -> remesh
            vertex). Nothing is written unless the whole computation succeeds.
+  intersurface
+           map two closed meshes of the same genus (genus 0 for now) onto each
+           other, each feature of A exactly onto its partner on B. Writes
+           DIR/A_to_B.txt and DIR/B_to_A.txt (one line per source vertex: the
+           target triangle index in the target's input triangle order, then
+           three barycentric weights) and DIR/A_on_B.obj, DIR/B_on_A.obj (the
+           source's faces and vertex order, positions mapped onto the other
+           surface). Without --features (or with fewer than 3 pairs) pairs are
+           added automatically.
 
 options:
   -o, --output OUT   output file of `sphere` and `constrained`; output
-                     directory of `consistent` (created if missing)
+                     directory of `consistent` and `intersurface` (created if missing)
   --features FILE    JSON object {"name": vertex_index, ...} (0-based, at least 3);
-                     for `consistent` {"name": [index or null per input], ...}
+                     for `consistent` {"name": [index or null per input], ...};
+                     for `intersurface` {"name": [index_in_A, index_in_B], ...}
   --targets FILE     JSON object {"name": [x, y, z], ...} with the same names
                      (normalized; distinct); without it the targets are where
                      the unconstrained map puts the features
@@ -147,16 +159,18 @@ Arguments parse(const std::vector<std::string>& args) {
     else if (arg == "--first") a.first = int(parse_integer(arg, value(), 0, 1 << 20)), a.first_given = true;
     else if (arg.size() > 1 && arg[0] == '-') throw UsageError("unknown option '" + arg + "' (see cmaps --help)");
     else if (a.command.empty()) a.command = arg;
-    else if (a.inputs.empty() || a.command == "consistent") a.inputs.push_back(arg);
+    else if (a.inputs.empty() || a.command == "consistent" || a.command == "intersurface") a.inputs.push_back(arg);
     else throw UsageError("unexpected argument '" + arg + "' (see cmaps --help)");
   }
   if (a.command.empty()) throw UsageError("missing command (see cmaps --help)");
-  if (a.command != "check" && a.command != "sphere" && a.command != "constrained" && a.command != "consistent")
+  if (a.command != "check" && a.command != "sphere" && a.command != "constrained" && a.command != "consistent" &&
+      a.command != "intersurface")
     throw UsageError("unknown command '" + a.command + "' (see cmaps --help)");
   if (a.inputs.empty()) throw UsageError("missing input mesh (see cmaps --help)");
   a.input = a.inputs.front();
   if (a.command != "check" && a.output.empty())
-    throw UsageError(a.command + (a.command == "consistent" ? " needs -o DIR" : " needs -o OUT") +
+    throw UsageError(a.command +
+                     (a.command == "consistent" || a.command == "intersurface" ? " needs -o DIR" : " needs -o OUT") +
                      " (see cmaps --help)");
   if (a.command == "check" && !a.output.empty()) throw UsageError("check takes no -o");
   if (a.command != "consistent") {
@@ -178,6 +192,12 @@ Arguments parse(const std::vector<std::string>& args) {
     for (const auto& [option, given] : {std::pair<const char*, const std::string&>{"--targets", a.targets},
                                         {"--refined-mesh", a.refined_mesh}})
       if (!given.empty()) throw UsageError("consistent takes no " + std::string(option) + " (only constrained does)");
+  } else if (a.command == "intersurface") {
+    if (a.inputs.size() != 2)
+      throw UsageError("intersurface needs 2 input meshes (A B), got " + std::to_string(a.inputs.size()));
+    for (const auto& [option, given] : {std::pair<const char*, const std::string&>{"--targets", a.targets},
+                                        {"--refined-mesh", a.refined_mesh}})
+      if (!given.empty()) throw UsageError("intersurface takes no " + std::string(option) + " (only constrained does)");
   } else if (a.command == "constrained") {
     if (a.features.empty()) throw UsageError("constrained needs --features FILE (see cmaps --help)");
   } else {
@@ -186,7 +206,7 @@ Arguments parse(const std::vector<std::string>& args) {
                                         {"--refined-mesh", a.refined_mesh}})
       if (!given.empty())
         throw UsageError(a.command + " takes no " + option +
-                         (std::string(option) == "--features" ? " (only constrained and consistent do)"
+                         (std::string(option) == "--features" ? " (only constrained, consistent and intersurface do)"
                                                               : " (only constrained does)"));
   }
   return a;
@@ -232,6 +252,10 @@ struct Outcome {
   std::optional<std::string> faces_per_input, efficiencies, flips, steiner_counts, bijective_per_input,
       feature_locations, outputs;
   std::optional<int> first;
+  // `intersurface` only: per direction (A to B, B to A) or per mesh (A, B), null until known.
+  bool intersurface = false;
+  std::optional<std::string> dirichlet, steiner_per_mesh, added_features;
+  std::optional<int> feature_count;
 };
 
 void run_check(const Arguments& args, Outcome& out) {
@@ -678,6 +702,118 @@ void run_consistent(const Arguments& args, Outcome& out) {
   out.summary = "wrote " + std::to_string(outputs.size()) + " files to " + args.output + ": " + line;
 }
 
+// ------------------------------------------------------------------ intersurface
+
+// Feature pairs of `intersurface`: {"name": [index_in_A, index_in_B], ...},
+// every name with a vertex on both meshes; ranges and repeats are checked by
+// the library (by pair index), here with the name.
+std::vector<cmaps::FeaturePair> read_feature_pairs(const Arguments& args, const cmaps::TriangleMesh& a,
+                                                   const cmaps::TriangleMesh& b) {
+  if (args.features.empty()) return {};
+  std::vector<cmaps::FeaturePair> pairs;
+  std::map<int, std::string> seen[2];
+  const cmaps::TriangleMesh* meshes[2] = {&a, &b};
+  for (const auto& [name, vertices] : cmaps::read_set_feature_file(args.features, 2)) {
+    for (int i = 0; i < 2; ++i) {
+      const std::string& path = args.inputs[i];
+      const int v = vertices[i], n = int(meshes[i]->vertices.size());
+      if (v < 0)
+        throw cmaps::InvalidInput(args.features + ": feature " + in_quotes(name) + " has no vertex on " + path +
+                                  "; an inter-surface feature needs one on both meshes");
+      if (v >= n)
+        throw cmaps::InvalidInput(args.features + ": feature " + in_quotes(name) + ": vertex " + std::to_string(v) +
+                                  " is out of range for " + path + " (" + std::to_string(n) + " vertices)");
+      const auto [it, inserted] = seen[i].emplace(v, name);
+      if (!inserted)
+        throw cmaps::InvalidInput(args.features + ": features " + in_quotes(it->second) + " and " + in_quotes(name) +
+                                  " are both vertex " + std::to_string(v) + " of " + path);
+    }
+    pairs.push_back({vertices[0], vertices[1]});
+  }
+  return pairs;
+}
+
+// One line per source vertex: target triangle, then its three barycentric weights.
+std::string surface_points_text(const std::vector<cmaps::SurfacePoint>& points) {
+  std::string text;
+  char line[128];
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const cmaps::SurfacePoint& p = points[i];
+    std::snprintf(line, sizeof line, "%s%d %.17g %.17g %.17g", i ? "\n" : "", p.triangle, p.barycentric[0],
+                  p.barycentric[1], p.barycentric[2]);
+    text += line;
+  }
+  return text;
+}
+
+void run_intersurface(const Arguments& args, Outcome& out) {
+  out.intersurface = true;
+  check_output_directory(args.output);
+  out.json.add_json("inputs", JsonObject::array(args.inputs));
+  const cmaps::TriangleMesh a = cmaps::read_mesh(args.inputs[0]);
+  const cmaps::TriangleMesh b = cmaps::read_mesh(args.inputs[1]);
+  out.faces_per_input = JsonObject::array(std::vector<int>{int(a.triangles.size()), int(b.triangles.size())});
+  const std::vector<cmaps::FeaturePair> features = read_feature_pairs(args, a, b);
+  out.feature_count = int(features.size());
+
+  cmaps::IntersurfaceOptions options;
+  options.sphere.seed = args.seed;
+  options.sphere.effort = args.effort;
+  options.sphere.threads = args.threads;
+  const cmaps::IntersurfaceResult result =
+      with_terminal_progress(!args.json && isatty(STDERR_FILENO), [&](const cmaps::ProgressCallback& progress) {
+        return cmaps::intersurface_map(a, b, features, options, progress);
+      });
+  if (result.a_to_b.size() != a.vertices.size() || result.b_to_a.size() != b.vertices.size())
+    throw cmaps::Error("internal error: the inter-surface map returned " + std::to_string(result.a_to_b.size()) +
+                       " and " + std::to_string(result.b_to_a.size()) + " images for " +
+                       std::to_string(a.vertices.size()) + " and " + std::to_string(b.vertices.size()) + " vertices");
+
+  namespace fs = std::filesystem;
+  std::error_code error;
+  fs::create_directories(args.output, error);
+  if (error) throw cmaps::IoError("cannot create '" + args.output + "': " + error.message());
+  const auto path = [&](const char* name) { return (fs::path(args.output) / name).string(); };
+  const std::vector<std::string> outputs{path("A_to_B.txt"), path("B_to_A.txt"), path("A_on_B.obj"),
+                                         path("B_on_A.obj")};
+  write_text(outputs[0], surface_points_text(result.a_to_b));
+  write_text(outputs[1], surface_points_text(result.b_to_a));
+  cmaps::write_mesh(outputs[2], cmaps::TriangleMesh{result.a_on_b, a.triangles});
+  cmaps::write_mesh(outputs[3], cmaps::TriangleMesh{result.b_on_a, b.triangles});
+
+  const cmaps::MapDistortion &ab = result.distortion_a_to_b, &ba = result.distortion_b_to_a;
+  out.dirichlet = JsonObject::array(std::vector<double>{ab.symmetric_dirichlet, ba.symmetric_dirichlet});
+  out.flips = JsonObject::array(std::vector<int>{ab.flipped, ba.flipped});
+  out.efficiencies = JsonObject::array(std::vector<double>{result.efficiency_a, result.efficiency_b});
+  out.steiner_per_mesh = JsonObject::array(std::vector<int>{result.steiner_a, result.steiner_b});
+  std::string added = "[";
+  for (std::size_t k = features.size(); k < result.features.size(); ++k)
+    added += std::string(k > features.size() ? ", " : "") + JsonObject::array(std::vector<int>{
+                                                                 result.features[k].a, result.features[k].b});
+  out.added_features = added + "]";
+  out.outputs = JsonObject::array(outputs);
+  out.json.add("genus", result.genus)
+      .add_json("degenerate", JsonObject::array(std::vector<int>{ab.degenerate, ba.degenerate}))
+      .add("sphere_flipped", result.sphere_flipped)
+      .add("seconds_features", result.seconds_features)
+      .add("seconds_parameterize", result.seconds_parameterize)
+      .add("seconds_locate", result.seconds_locate)
+      .add("seconds_measure", result.seconds_measure)
+      .add("seconds_compute", result.seconds)
+      .add("seed", static_cast<unsigned long long>(args.seed))
+      .add("effort", args.effort)
+      .add("threads", args.threads)
+      .add("output", args.output);
+
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "%zu feature pairs (%d added), symmetric Dirichlet %.4f (A to B) / %.4f (B to A), %d / %d flipped, "
+                "%d + %d Steiner vertices",
+                result.features.size(), result.added_features, ab.symmetric_dirichlet, ba.symmetric_dirichlet,
+                ab.flipped, ba.flipped, result.steiner_a, result.steiner_b);
+  out.summary = "wrote " + std::to_string(outputs.size()) + " files to " + args.output + ": " + line;
+}
+
 std::string one_line(std::string message) {
   std::replace(message.begin(), message.end(), '\n', ' ');
   std::replace(message.begin(), message.end(), '\r', ' ');
@@ -696,6 +832,7 @@ int run(const std::vector<std::string>& argv) {
     if (args.command == "check") run_check(args, out);
     else if (args.command == "sphere") run_sphere(args, out);
     else if (args.command == "consistent") run_consistent(args, out);
+    else if (args.command == "intersurface") run_intersurface(args, out);
     else run_constrained(args, out);
   } catch (const UsageError& e) {
     error = e.what(), code = 2;
@@ -718,6 +855,16 @@ int run(const std::vector<std::string>& argv) {
           .add_json("bijective", out.bijective_per_input)
           .add_json("feature_locations", out.feature_locations)
           .add("first", out.first)
+          .add_json("outputs", out.outputs);
+    } else if (out.intersurface) {
+      out.json.add_json("faces", out.faces_per_input)
+          .add("seconds", seconds_since(start))
+          .add_json("stretch_efficiency", out.efficiencies)
+          .add_json("symmetric_dirichlet", out.dirichlet)
+          .add_json("flipped", out.flips)
+          .add_json("steiner", out.steiner_per_mesh)
+          .add("features", out.feature_count)
+          .add_json("added_features", out.added_features)
           .add_json("outputs", out.outputs);
     } else {
       out.json.add("faces", out.faces)

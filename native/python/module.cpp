@@ -22,6 +22,7 @@
 #include "consistent_maps/constrained_parameterization.h"
 #include "consistent_maps/errors.h"
 #include "consistent_maps/geometry_image.h"
+#include "consistent_maps/intersurface_map.h"
 #include "consistent_maps/mesh_check.h"
 #include "consistent_maps/mesh_io.h"
 #include "consistent_maps/octahedral_grid.h"
@@ -397,6 +398,13 @@ IntegerArray to_feature_array(const py::handle& data, py::ssize_t rows) {
   return to_integers(array, "features");
 }
 
+// A (vertices, triangles) pair; `name` labels it in messages.
+cmaps::TriangleMesh to_mesh_pair(const py::handle& item, const std::string& name) {
+  if (!py::isinstance<py::sequence>(item) || py::isinstance<py::str>(item) || py::len(item) != 2)
+    raise(PyExc_TypeError, name + " must be a (vertices, triangles) pair");
+  return to_mesh(item[py::int_(0)], item[py::int_(1)]);
+}
+
 // A sequence of (vertices, triangles) pairs, each a genus-0 mesh, closed or with holes.
 std::vector<cmaps::TriangleMesh> to_meshes(const py::handle& meshes) {
   if (!py::isinstance<py::sequence>(meshes) || py::isinstance<py::str>(meshes))
@@ -404,10 +412,7 @@ std::vector<cmaps::TriangleMesh> to_meshes(const py::handle& meshes) {
   const auto items = py::reinterpret_borrow<py::sequence>(meshes);
   std::vector<cmaps::TriangleMesh> result;
   for (std::size_t i = 0; i < items.size(); ++i) {
-    const py::object item = items[i];
-    if (!py::isinstance<py::sequence>(item) || py::len(item) != 2)
-      raise(PyExc_TypeError, "meshes[" + std::to_string(i) + "] must be a (vertices, triangles) pair");
-    result.push_back(to_mesh(item[py::int_(0)], item[py::int_(1)]));
+    result.push_back(to_mesh_pair(items[i], "meshes[" + std::to_string(i) + "]"));
     try {
       cmaps::require_sphere_topology(result.back(), true);
     } catch (const cmaps::InvalidInput& e) {
@@ -477,6 +482,81 @@ py::tuple parameterize_to_locations(const py::handle& vertices, const py::handle
     return cmaps::parameterize_to_locations(member, locations, options, callback);
   });
   return constrained_outputs(member.mesh, result, seconds);
+}
+
+// ------------------------------------------------------------------ inter-surface maps
+
+// (k, 2) integer pairs [index_in_A, index_in_B]; empty lists are allowed. The
+// library checks the ranges and repeats.
+std::vector<cmaps::FeaturePair> to_feature_pairs(const py::handle& data) {
+  const py::array array = as_array(data, "feature_pairs");
+  if (array.size() == 0 && (array.ndim() == 1 || (array.ndim() == 2 && array.shape(1) == 2))) return {};
+  const auto pairs = to_integers(array, "feature_pairs");
+  if (pairs.ndim() != 2 || pairs.shape(1) != 2)
+    raise(PyExc_ValueError, "feature_pairs must have shape (k, 2), got " + shape_of(pairs));
+  const auto p = pairs.unchecked<2>();
+  std::vector<cmaps::FeaturePair> result(p.shape(0));
+  const auto index = [](std::int64_t v) { return int(std::clamp<std::int64_t>(v, -1, 1LL << 30)); };
+  for (py::ssize_t k = 0; k < p.shape(0); ++k) result[k] = {index(p(k, 0)), index(p(k, 1))};
+  return result;
+}
+
+py::array_t<std::int32_t> to_numpy(const std::vector<int>& values) {
+  return py::array_t<std::int32_t>(py::ssize_t(values.size()), values.data());
+}
+
+// Per source vertex: (triangles (n,) int32, barycentric (n, 3) float64).
+std::pair<py::array_t<std::int32_t>, py::array_t<double>> to_numpy(const std::vector<cmaps::SurfacePoint>& points) {
+  std::vector<int> triangles(points.size());
+  py::array_t<double> barycentric({py::ssize_t(points.size()), py::ssize_t(3)});
+  auto b = barycentric.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    triangles[i] = points[i].triangle;
+    for (int k = 0; k < 3; ++k) b(i, k) = points[i].barycentric[k];
+  }
+  return {to_numpy(triangles), barycentric};
+}
+
+py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, const py::handle& pairs_data, int grid,
+                          std::uint64_t seed, int effort, int threads, const py::object& progress) {
+  cmaps::IntersurfaceOptions options;
+  options.sphere = sphere_options(seed, effort, threads, progress);
+  require_grid_resolution(grid, "grid");
+  options.grid = grid;
+  const cmaps::TriangleMesh a = to_mesh_pair(mesh_a, "mesh_a"), b = to_mesh_pair(mesh_b, "mesh_b");
+  const std::vector<cmaps::FeaturePair> pairs = to_feature_pairs(pairs_data);
+  const auto [result, seconds] = run_released(progress, [&](const cmaps::ProgressCallback& callback) {
+    return cmaps::intersurface_map(a, b, pairs, options, callback);
+  });
+
+  py::dict d;
+  const auto [ab_triangle, ab_barycentric] = to_numpy(result.a_to_b);
+  const auto [ba_triangle, ba_barycentric] = to_numpy(result.b_to_a);
+  d["a_to_b_triangle"] = ab_triangle;
+  d["a_to_b_barycentric"] = ab_barycentric;
+  d["b_to_a_triangle"] = ba_triangle;
+  d["b_to_a_barycentric"] = ba_barycentric;
+  d["a_on_b"] = to_numpy(result.a_on_b);
+  d["b_on_a"] = to_numpy(result.b_on_a);
+  py::array_t<std::int32_t> features({py::ssize_t(result.features.size()), py::ssize_t(2)});
+  auto f = features.mutable_unchecked<2>();
+  for (std::size_t k = 0; k < result.features.size(); ++k) f(k, 0) = result.features[k].a, f(k, 1) = result.features[k].b;
+  d["features"] = features;
+  d["added_features"] = result.added_features;
+  d["genus"] = result.genus;
+  const cmaps::MapDistortion &ab = result.distortion_a_to_b, &ba = result.distortion_b_to_a;
+  d["symmetric_dirichlet"] = py::make_tuple(ab.symmetric_dirichlet, ba.symmetric_dirichlet);
+  d["flipped"] = py::make_tuple(ab.flipped, ba.flipped);
+  d["degenerate"] = py::make_tuple(ab.degenerate, ba.degenerate);
+  d["sphere_flipped"] = result.sphere_flipped;
+  d["stretch_efficiency"] = py::make_tuple(result.efficiency_a, result.efficiency_b);
+  d["steiner"] = py::make_tuple(result.steiner_a, result.steiner_b);
+  d["seconds"] = seconds;
+  d["seconds_features"] = result.seconds_features;
+  d["seconds_parameterize"] = result.seconds_parameterize;
+  d["seconds_locate"] = result.seconds_locate;
+  d["seconds_measure"] = result.seconds_measure;
+  return d;
 }
 
 // Per member (vertices, triangles, sphere): a parameterized surface.
@@ -789,6 +869,20 @@ PYBIND11_MODULE(_native, m) {
         "locations[i]. features: (k,) vertex indices, -1 where the mesh lacks the feature (left free; at\n"
         "least 3 present); locations: (k, 3), e.g. a set's 'feature_locations'. Returns (sphere, stats, extras)\n"
         "like constrained_spherical_parameterization.");
+  m.def("intersurface_map", &intersurface_map, py::arg("mesh_a"), py::arg("mesh_b"),
+        py::arg("feature_pairs") = py::list(), py::kw_only(), py::arg("grid") = 64, py::arg("seed") = 1,
+        py::arg("effort") = 1, py::arg("threads") = 2, py::arg("progress") = py::none(),
+        "Inter-surface map between two closed meshes of equal genus (genus 0 for now: through a consistent\n"
+        "spherical parameterization of both). mesh_a, mesh_b: (vertices, triangles); feature_pairs: (k, 2)\n"
+        "[vertex of A, vertex of B], mapped exactly onto each other (fewer than 3: pairs are added\n"
+        "automatically up to 4). Returns a dict: 'a_to_b_triangle' (nA,) int32 and 'a_to_b_barycentric'\n"
+        "(nA, 3): each vertex of A on an input triangle of B with weights w.r.t. its corners; likewise\n"
+        "'b_to_a_*'; 'a_on_b' (nA, 3), 'b_on_a' (nB, 3) the mapped positions; 'features' (k', 2) the pairs\n"
+        "used (given, then added), 'added_features'; per direction (A to B, B to A) 'symmetric_dirichlet'\n"
+        "(area-normalized, optimum 4, each source triangle mapped linearly onto its corners' images),\n"
+        "'flipped', 'degenerate'; 'sphere_flipped', 'stretch_efficiency' and 'steiner' of the two spherical\n"
+        "maps; 'seconds' and per stage. Raises InvalidMeshError for different genus, genus > 0,\n"
+        "non-manifold meshes or bad pairs, Cancelled when progress returns False.");
   m.def("consistent_remesh", &consistent_remesh, py::arg("surfaces"), py::arg("feature_locations"), py::arg("n"),
         py::kw_only(), py::arg("threads") = 2,
         "Consistent remeshes: every parameterized surface sampled at the vertices of the octahedral grid of\n"

@@ -1,0 +1,107 @@
+// Inter-surface maps between two closed meshes of the same genus (issue 5):
+// for every vertex of A its image on B (an input triangle of B and
+// barycentric weights) and vice versa, with corresponding feature vertices
+// mapped exactly onto each other.
+//
+// Genus 0 (this milestone): the composition through the common sphere. Both
+// meshes get a consistent spherical parameterization (thesis 3.2) with the
+// feature pairs as features, so each pair lands on one point of the sphere;
+// a vertex of A is mapped onto B by locating its sphere point in B's map.
+// The result is continuous and bijective as a map between the surfaces
+// (both spherical maps are); what is sampled here is its value at the
+// vertices.
+//
+// With fewer than 3 pairs (the consistent parameterization needs 3), pairs
+// are added automatically until there are 4: both meshes are mapped to the
+// sphere unconstrained, B's map is rotated onto A's by the given pairs (least
+// squares; with no pair the two maps are taken as they are), and well-spread
+// vertices of A (farthest points on the sphere from the given features) are
+// paired with the vertex of B nearest to where they land. So a pair with zero
+// features still gets a valid, bijective map, only with an arbitrary
+// correspondence where nothing constrains it.
+//
+// Genus 1 and higher (the direct method of Schreiner et al. 2004 behind the
+// same interface) is the next milestone: such pairs are refused for now.
+#pragma once
+#include <array>
+#include <vector>
+
+#include "consistent_maps/mesh.h"
+#include "consistent_maps/progress.h"
+#include "consistent_maps/spherical_parameterization.h"
+
+namespace cmaps {
+
+// Corresponding vertices: vertex `a` of mesh A and vertex `b` of mesh B.
+struct FeaturePair {
+  int a = -1;
+  int b = -1;
+};
+
+// A point on a mesh: one of its input triangles (index into its triangle
+// array) and barycentric weights w.r.t. that triangle's corners in their
+// order (each >= 0, summing to 1).
+struct SurfacePoint {
+  int triangle = -1;
+  std::array<double, 3> barycentric{0, 0, 0};
+};
+
+struct IntersurfaceOptions {
+  SphereOptions sphere;  // seed, effort, threads of the underlying parameterizations
+  int grid = 64;         // genus 0: octahedral grid of the consistent parameterization (even)
+};
+
+// Distortion of the map sampled at the vertices: each triangle of the source
+// is mapped linearly onto the triangle its corners' images form on the
+// target (a chord of the target surface, not the common refinement), with
+// the target scaled to the source's total area. The symmetric Dirichlet
+// energy |J|^2 + |J^-1|^2 is averaged over the source's area (optimum 4, an
+// isometry). Image triangles of zero area are left out of the average and
+// counted in `degenerate`; `flipped` counts image triangles whose normal
+// points against the target surface's normal there (the area-weighted normal
+// of the target triangles holding the three images). Both are properties of
+// this vertex sampling: the map itself is bijective (see sphere_flipped).
+struct MapDistortion {
+  double symmetric_dirichlet = 0;
+  int flipped = 0;
+  int degenerate = 0;
+};
+
+struct IntersurfaceResult {
+  std::vector<SurfacePoint> a_to_b;  // per vertex of A: its image on B (B's input triangles)
+  std::vector<SurfacePoint> b_to_a;  // per vertex of B: its image on A
+  std::vector<Vec3> a_on_b;          // per vertex of A: the position of its image on B
+  std::vector<Vec3> b_on_a;          // per vertex of B: the position of its image on A
+  MapDistortion distortion_a_to_b, distortion_b_to_a;
+  std::vector<FeaturePair> features;  // the pairs used: the given ones, then any added automatically
+  int added_features = 0;             // how many of `features` were added
+  int genus = 0;
+  // Genus 0: the two spherical maps (their stretch efficiency, flipped
+  // chordal triangles, Steiner vertices inserted on each mesh).
+  double efficiency_a = 0, efficiency_b = 0;
+  int sphere_flipped = 0;
+  int steiner_a = 0, steiner_b = 0;
+  // Wall time per stage: unconstrained maps for added features, the
+  // consistent parameterization, point location and conversion, measures.
+  double seconds_features = 0, seconds_parameterize = 0, seconds_locate = 0, seconds_measure = 0, seconds = 0;
+};
+
+// Throws TopologyError for a mesh that is not one closed, manifold,
+// consistently oriented surface (naming A or B), for meshes of different
+// genus ("A has genus 1, B has genus 2; an inter-surface map needs equal
+// genus") and, for now, for genus 1 and higher; InvalidInput for a feature
+// vertex out of range or used by two pairs; Cancelled when `progress` says so.
+IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b,
+                                    const std::vector<FeaturePair>& features,
+                                    const IntersurfaceOptions& options = {},
+                                    const ProgressCallback& progress = {});
+
+// The distortion measure above for any per-vertex map of `source` onto
+// `target` (one SurfacePoint per source vertex).
+MapDistortion measure_intersurface_map(const TriangleMesh& source, const TriangleMesh& target,
+                                       const std::vector<SurfacePoint>& image);
+
+// Positions of the images: sum of weight * corner position on `target`.
+std::vector<Vec3> surface_positions(const TriangleMesh& target, const std::vector<SurfacePoint>& points);
+
+}  // namespace cmaps

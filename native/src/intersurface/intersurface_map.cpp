@@ -1,0 +1,335 @@
+// Inter-surface maps (issue 5), genus 0: the composition of two consistent
+// spherical parameterizations. See intersurface_map.h.
+#include "consistent_maps/intersurface_map.h"
+
+#include <Eigen/SVD>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <string>
+
+#include "common/parallel_for.h"
+#include "consistent_maps/consistent_parameterization.h"
+#include "consistent_maps/errors.h"
+#include "consistent_maps/mesh_check.h"
+#include "consistent_maps/sphere_locator.h"
+
+namespace cmaps {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+ProgressCallback slice(const ProgressCallback& progress, double begin, double end) {
+  if (!progress) return {};
+  return [&progress, begin, end](double f, const std::string& stage) { return progress(begin + (end - begin) * f, stage); };
+}
+
+// The genus of one closed, manifold, consistently oriented, connected mesh;
+// TopologyError naming the mesh (`name` is "A" or "B") otherwise.
+int checked_genus(const TriangleMesh& mesh, const std::string& name) {
+  const MeshReport r = check_mesh(mesh);
+  const bool usable = r.vertices > 0 && r.genus >= 0 && r.manifold() && r.closed() && r.components == 1 &&
+                      r.referenced_vertices == r.vertices && r.inconsistently_oriented_edges == 0 &&
+                      r.non_finite_vertices == 0 && r.out_of_range_indices == 0;
+  if (!usable)
+    throw TopologyError(name + ": mesh has " + summarize(r) +
+                        "; an inter-surface map needs one closed, manifold, consistently oriented surface");
+  return r.genus;
+}
+
+void check_features(const std::vector<FeaturePair>& features, const TriangleMesh& a, const TriangleMesh& b) {
+  std::map<int, std::size_t> seen_a, seen_b;
+  for (std::size_t k = 0; k < features.size(); ++k) {
+    const std::string pair = "feature pair " + std::to_string(k);
+    const auto check = [&](int v, const TriangleMesh& mesh, const char* name, std::map<int, std::size_t>& seen) {
+      const int n = int(mesh.vertices.size());
+      if (v < 0 || v >= n)
+        throw InvalidInput(pair + ": vertex " + std::to_string(v) + " is out of range for " + name + " (" +
+                           std::to_string(n) + " vertices)");
+      const auto [it, inserted] = seen.emplace(v, k);
+      if (!inserted)
+        throw InvalidInput("feature pairs " + std::to_string(it->second) + " and " + std::to_string(k) +
+                           " both use vertex " + std::to_string(v) + " of " + name);
+    };
+    check(features[k].a, a, "A", seen_a);
+    check(features[k].b, b, "B", seen_b);
+  }
+}
+
+// Rotation R with R x_i close to y_i (least squares); identity without pairs,
+// the shortest rotation for one pair.
+Eigen::Matrix3d align(const std::vector<Vec3>& x, const std::vector<Vec3>& y) {
+  if (x.empty()) return Eigen::Matrix3d::Identity();
+  if (x.size() == 1) return Eigen::Quaterniond::FromTwoVectors(x[0], y[0]).toRotationMatrix();
+  Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
+  for (std::size_t i = 0; i < x.size(); ++i) h += x[i] * y[i].transpose();
+  if (x.size() == 2) h += x[0].cross(x[1]) * y[0].cross(y[1]).transpose();  // pins the rotation about the pair
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(h, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
+  d(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1 : 1;
+  return svd.matrixV() * d * svd.matrixU().transpose();
+}
+
+// Adds pairs until there are `wanted`: see the header. Returns the time spent.
+void add_features(const TriangleMesh& a, const TriangleMesh& b, std::vector<FeaturePair>& features,
+                  std::size_t wanted, const SphereOptions& options, const ProgressCallback& progress) {
+  const SphereResult sa = spherical_parameterization(a, options, slice(progress, 0, 0.5));
+  const SphereResult sb = spherical_parameterization(b, options, slice(progress, 0.5, 1));
+  std::vector<Vec3> x, y;
+  for (const FeaturePair& f : features) x.push_back(sa.sphere[f.a]), y.push_back(sb.sphere[f.b]);
+  const Eigen::Matrix3d rotation = align(x, y);
+  const SphereLocator locator(sb.sphere, b.triangles);
+
+  std::vector<char> used_a(a.vertices.size(), 0), used_b(b.vertices.size(), 0);
+  std::vector<double> distance(a.vertices.size(), std::numeric_limits<double>::infinity());
+  std::vector<Vec3> points(a.vertices.size());
+  for (std::size_t v = 0; v < points.size(); ++v) points[v] = rotation * sa.sphere[v];
+  const auto take = [&](int v) {
+    for (std::size_t u = 0; u < points.size(); ++u)
+      distance[u] = std::min(distance[u], (points[u] - points[v]).squaredNorm());
+  };
+  for (const FeaturePair& f : features) used_a[f.a] = used_b[f.b] = 1, take(f.a);
+  int candidate = features.empty() ? 0 : -1;
+  while (features.size() < wanted) {
+    if (candidate < 0) {
+      double best = -1;
+      for (std::size_t u = 0; u < points.size(); ++u)
+        if (!used_a[u] && distance[u] > best) best = distance[u], candidate = int(u);
+      if (candidate < 0) throw InvalidInput("A has too few vertices for " + std::to_string(wanted) + " features");
+    }
+    const SphereLocation at = locator.locate(points[candidate]);
+    const auto& corners = b.triangles[at.triangle];
+    const int k = int(std::max_element(at.barycentric.begin(), at.barycentric.end()) - at.barycentric.begin());
+    used_a[candidate] = 1;
+    if (!used_b[corners[k]]) {
+      used_b[corners[k]] = 1;
+      features.push_back({candidate, corners[k]});
+      take(candidate);
+    }
+    candidate = -1;
+  }
+}
+
+// Barycentric coordinates of x w.r.t. triangle (p0, p1, p2), projected onto
+// its plane, clamped to the triangle and normalized.
+std::array<double, 3> project(const Vec3& x, const Vec3& p0, const Vec3& p1, const Vec3& p2) {
+  const Vec3 e1 = p1 - p0, e2 = p2 - p0, d = x - p0;
+  const double a = e1.dot(e1), b = e1.dot(e2), c = e2.dot(e2), det = a * c - b * b;
+  std::array<double, 3> w{1.0 / 3, 1.0 / 3, 1.0 / 3};
+  if (det > 0) {
+    const double s = (c * d.dot(e1) - b * d.dot(e2)) / det, t = (a * d.dot(e2) - b * d.dot(e1)) / det;
+    w = {std::max(0.0, 1 - s - t), std::max(0.0, s), std::max(0.0, t)};
+  }
+  const double sum = w[0] + w[1] + w[2];
+  if (sum > 0) for (double& v : w) v /= sum;
+  else w = {1, 0, 0};
+  return w;
+}
+
+// A point of `map`'s refined triangulation (triangle, barycentric) as a point
+// of the input triangle it lies in, w.r.t. that triangle's corners.
+SurfacePoint to_input(const TriangleMesh& mesh, const ConstrainedResult& map, const SphereLocation& at) {
+  const int n = int(mesh.vertices.size());
+  SurfacePoint p;
+  p.triangle = map.input_triangle[at.triangle];
+  const Triangle& corners = mesh.triangles[p.triangle];
+  double stray = 0;  // weight on vertices that are not corners (never, up to the refinement's bookkeeping)
+  Vec3 x = Vec3::Zero();
+  const auto add = [&](int v, double w) {
+    x += w * mesh.vertices[v];
+    for (int j = 0; j < 3; ++j)
+      if (corners[j] == v) {
+        p.barycentric[j] += w;
+        return;
+      }
+    stray += std::abs(w);
+  };
+  const Triangle& refined = map.triangles[at.triangle];
+  for (int k = 0; k < 3; ++k) {
+    const int c = refined[k];
+    const double w = at.barycentric[k];
+    if (c < n) {
+      add(c, w);
+    } else {
+      const SteinerVertex& s = map.steiner[c - n];
+      for (int j = 0; j < 3; ++j)
+        if (s.vertices[j] >= 0) add(s.vertices[j], w * s.weights[j]);
+    }
+  }
+  if (stray > 1e-12) {
+    p.barycentric = project(x, mesh.vertices[corners[0]], mesh.vertices[corners[1]], mesh.vertices[corners[2]]);
+    return p;
+  }
+  double sum = 0;
+  for (double& w : p.barycentric) sum += (w = std::max(0.0, w));
+  for (double& w : p.barycentric) w /= sum;
+  return p;
+}
+
+// Per source vertex: its image on `target` through the sphere. Feature
+// vertices are put exactly on their partners.
+std::vector<SurfacePoint> map_through_sphere(const std::vector<Vec3>& source_sphere, const TriangleMesh& target,
+                                             const ConstrainedResult& target_map,
+                                             const std::vector<std::pair<int, int>>& exact, int threads) {
+  const ParameterizedSurface surface = parameterized_surface(target, target_map);
+  const SphereLocator locator(surface.sphere, surface.surface.triangles);
+  const std::vector<SphereLocation> located = locator.locate_all(source_sphere, threads);
+  std::vector<SurfacePoint> points(located.size());
+  parallel_for(int(located.size()), threads, [&](int i) { points[i] = to_input(target, target_map, located[i]); });
+
+  std::vector<int> incident(target.vertices.size(), -1);  // one triangle per vertex
+  for (std::size_t t = 0; t < target.triangles.size(); ++t)
+    for (int v : target.triangles[t])
+      if (incident[v] < 0) incident[v] = int(t);
+  for (const auto& [from, to] : exact) {
+    SurfacePoint& p = points[from];
+    p.triangle = incident[to];
+    for (int j = 0; j < 3; ++j) p.barycentric[j] = target.triangles[p.triangle][j] == to ? 1 : 0;
+  }
+  return points;
+}
+
+double total_area(const TriangleMesh& mesh) {
+  double area = 0;
+  for (const Triangle& t : mesh.triangles)
+    area += 0.5 * (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]).norm();
+  return area;
+}
+
+}  // namespace
+
+std::vector<Vec3> surface_positions(const TriangleMesh& target, const std::vector<SurfacePoint>& points) {
+  std::vector<Vec3> positions(points.size(), Vec3::Zero());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const SurfacePoint& p = points[i];
+    if (p.triangle < 0 || p.triangle >= int(target.triangles.size()))
+      throw InvalidInput("point " + std::to_string(i) + " lies on triangle " + std::to_string(p.triangle) +
+                         " but the target has " + std::to_string(target.triangles.size()) + " triangles");
+    for (int k = 0; k < 3; ++k) positions[i] += p.barycentric[k] * target.vertices[target.triangles[p.triangle][k]];
+  }
+  return positions;
+}
+
+MapDistortion measure_intersurface_map(const TriangleMesh& source, const TriangleMesh& target,
+                                       const std::vector<SurfacePoint>& image) {
+  if (image.size() != source.vertices.size())
+    throw InvalidInput("the map has " + std::to_string(image.size()) + " images for " +
+                       std::to_string(source.vertices.size()) + " vertices");
+  const std::vector<Vec3> mapped = surface_positions(target, image);
+  const double source_area = total_area(source), target_area = total_area(target);
+  const double scale = target_area > 0 ? std::sqrt(source_area / target_area) : 1;  // target to the source's area
+  const auto normal = [&](int t) {
+    const Triangle& c = target.triangles[t];
+    return Vec3((target.vertices[c[1]] - target.vertices[c[0]]).cross(target.vertices[c[2]] - target.vertices[c[0]]));
+  };
+
+  MapDistortion d;
+  double energy = 0, area = 0;
+  for (const Triangle& t : source.triangles) {
+    const Vec3 &p0 = source.vertices[t[0]], &p1 = source.vertices[t[1]], &p2 = source.vertices[t[2]];
+    const Vec3 q0 = scale * mapped[t[0]], q1 = scale * mapped[t[1]], q2 = scale * mapped[t[2]];
+    const Vec3 np = (p1 - p0).cross(p2 - p0), nq = (q1 - q0).cross(q2 - q0);
+    const double ap = 0.5 * np.norm(), aq = 0.5 * nq.norm();
+    const Vec3 surface_normal = normal(image[t[0]].triangle) + normal(image[t[1]].triangle) +
+                                normal(image[t[2]].triangle);
+    if (nq.dot(surface_normal) < 0) ++d.flipped;
+    if (ap <= 0) continue;  // zero-area source triangles carry no energy
+    if (aq <= 1e-14 * source_area) {
+      ++d.degenerate;
+      continue;
+    }
+    // |J|_F^2 = sum_i cot(angle_i of P) |opposite edge of Q|^2 / (2 area P); |J^-1|_F^2 = |J|_F^2 (ap/aq)^2.
+    const Vec3 p[3] = {p0, p1, p2}, q[3] = {q0, q1, q2};
+    double dirichlet = 0;
+    for (int i = 0; i < 3; ++i) {
+      const Vec3 u = p[(i + 1) % 3] - p[i], v = p[(i + 2) % 3] - p[i];
+      const double cot = u.dot(v) / u.cross(v).norm();
+      dirichlet += cot * (q[(i + 2) % 3] - q[(i + 1) % 3]).squaredNorm();
+    }
+    dirichlet /= 2 * ap;
+    energy += ap * dirichlet * (1 + (ap / aq) * (ap / aq));
+    area += ap;
+  }
+  d.symmetric_dirichlet = area > 0 ? energy / area : std::numeric_limits<double>::infinity();
+  return d;
+}
+
+IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b,
+                                    const std::vector<FeaturePair>& features, const IntersurfaceOptions& options,
+                                    const ProgressCallback& progress) {
+  const auto start = Clock::now();
+  const int genus_a = checked_genus(a, "A"), genus_b = checked_genus(b, "B");
+  if (genus_a != genus_b)
+    throw TopologyError("A has genus " + std::to_string(genus_a) + ", B has genus " + std::to_string(genus_b) +
+                        "; an inter-surface map needs equal genus");
+  if (genus_a > 0)
+    throw TopologyError("A and B have genus " + std::to_string(genus_a) +
+                        "; inter-surface maps of genus 1 and higher are not implemented yet (genus 0 only)");
+  for (const auto& [mesh, name] : {std::pair<const TriangleMesh&, const char*>{a, "A"}, {b, "B"}}) {
+    try {
+      require_sphere_topology(mesh);
+    } catch (const TopologyError& e) {
+      throw TopologyError(std::string(name) + ": " + e.what());
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(std::string(name) + ": " + e.what());
+    }
+  }
+  check_features(features, a, b);
+  if (options.grid < 2 || options.grid % 2 != 0)
+    throw InvalidInput("grid must be even and at least 2, got " + std::to_string(options.grid));
+
+  IntersurfaceResult result;
+  result.genus = genus_a;
+  result.features = features;
+
+  // Too few pairs for a constrained map: add some from the aligned unconstrained maps.
+  auto stage = Clock::now();
+  if (features.size() < 3) {
+    add_features(a, b, result.features, 4, options.sphere, slice(progress, 0, 0.2));
+    result.added_features = int(result.features.size() - features.size());
+  }
+  result.seconds_features = seconds_since(stage);
+
+  stage = Clock::now();
+  std::vector<ConsistentMember> members{{a, {}}, {b, {}}};
+  for (const FeaturePair& f : result.features) members[0].features.push_back(f.a), members[1].features.push_back(f.b);
+  ConsistentOptions consistent;
+  consistent.sphere = options.sphere;
+  consistent.grid = options.grid;
+  const ConsistentResult maps = consistent_spherical_parameterization(
+      members, consistent, slice(progress, features.size() < 3 ? 0.2 : 0, 0.95));
+  result.seconds_parameterize = seconds_since(stage);
+  const ConstrainedResult &map_a = maps.members[0], &map_b = maps.members[1];
+  result.efficiency_a = map_a.report.efficiency;
+  result.efficiency_b = map_b.report.efficiency;
+  result.sphere_flipped = map_a.report.flipped + map_b.report.flipped;
+  result.steiner_a = int(map_a.steiner.size());
+  result.steiner_b = int(map_b.steiner.size());
+
+  stage = Clock::now();
+  if (progress && !progress(0.95, "locating vertices on the other mesh")) throw Cancelled();
+  std::vector<std::pair<int, int>> a_to_b, b_to_a;
+  for (const FeaturePair& f : result.features) a_to_b.push_back({f.a, f.b}), b_to_a.push_back({f.b, f.a});
+  const int threads = options.sphere.threads;
+  result.a_to_b = map_through_sphere(map_a.sphere, b, map_b, a_to_b, threads);
+  result.b_to_a = map_through_sphere(map_b.sphere, a, map_a, b_to_a, threads);
+  result.a_on_b = surface_positions(b, result.a_to_b);
+  result.b_on_a = surface_positions(a, result.b_to_a);
+  result.seconds_locate = seconds_since(stage);
+
+  stage = Clock::now();
+  result.distortion_a_to_b = measure_intersurface_map(a, b, result.a_to_b);
+  result.distortion_b_to_a = measure_intersurface_map(b, a, result.b_to_a);
+  result.seconds_measure = seconds_since(stage);
+  if (progress && !progress(1, "done")) throw Cancelled();
+  result.seconds = seconds_since(start);
+  return result;
+}
+
+}  // namespace cmaps

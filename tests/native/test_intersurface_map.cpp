@@ -1,0 +1,195 @@
+// Inter-surface maps (issue 5), genus 0 through the common sphere: landmarks
+// exact, agreement with cat-lion's approximate dense map, round trips, and
+// one clear error for every unsupported pair.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <numeric>
+
+#include "consistent_maps/errors.h"
+#include "consistent_maps/intersurface_map.h"
+#include "consistent_maps/mesh_io.h"
+#include "test_support.h"
+
+namespace cmaps {
+namespace {
+
+using test::shared_mesh;
+
+// Measured 2.0 % (effort 0); a map ignoring the landmarks is off by 30 %.
+constexpr double kLion2CatTolerance = 0.05;
+
+double diagonal(const TriangleMesh& mesh) {
+  Vec3 lo = mesh.vertices.front(), hi = lo;
+  for (const Vec3& v : mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+  return (hi - lo).norm();
+}
+
+void expect_valid_points(const std::vector<SurfacePoint>& points, const TriangleMesh& target) {
+  for (const SurfacePoint& p : points) {
+    ASSERT_GE(p.triangle, 0);
+    ASSERT_LT(p.triangle, int(target.triangles.size()));
+    double sum = 0;
+    for (double w : p.barycentric) {
+      EXPECT_GE(w, 0);
+      sum += w;
+    }
+    EXPECT_NEAR(sum, 1, 1e-12);
+  }
+}
+
+// Each feature's image is its partner vertex, weight exactly 1.
+void expect_exact_features(const IntersurfaceResult& r, const TriangleMesh& a, const TriangleMesh& b) {
+  for (const FeaturePair& f : r.features) {
+    const SurfacePoint &on_b = r.a_to_b[f.a], &on_a = r.b_to_a[f.b];
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(on_b.barycentric[k], b.triangles[on_b.triangle][k] == f.b ? 1.0 : 0.0);
+      EXPECT_EQ(on_a.barycentric[k], a.triangles[on_a.triangle][k] == f.a ? 1.0 : 0.0);
+    }
+    EXPECT_EQ(r.a_on_b[f.a], b.vertices[f.b]);
+    EXPECT_EQ(r.b_on_a[f.b], a.vertices[f.a]);
+  }
+}
+
+struct CatLion {
+  TriangleMesh cat, lion;
+  std::vector<FeaturePair> landmarks;  // cat = A, lion = B
+  std::vector<int> lion2cat;
+  IntersurfaceResult map;
+};
+
+const CatLion& cat_lion() {
+  static const CatLion data = [] {
+    CatLion d;
+    const std::string dir = shared_mesh("sets/cat-lion/");
+    d.cat = read_mesh(dir + "cat-00.off");
+    d.lion = read_mesh(dir + "lion-00.off");
+    std::ifstream landmarks(dir + "landmarks.txt"), dense(dir + "lion2cat");
+    for (int c, l; landmarks >> c >> l;) d.landmarks.push_back({c, l});
+    for (int c; dense >> c;) d.lion2cat.push_back(c);
+    IntersurfaceOptions options;
+    options.sphere.effort = 0;
+    d.map = intersurface_map(d.cat, d.lion, d.landmarks, options);
+    return d;
+  }();
+  return data;
+}
+
+TEST(IntersurfaceMap, CatLionLandmarksExactAndWeightsValid) {
+  const CatLion& d = cat_lion();
+  ASSERT_EQ(d.landmarks.size(), 20u);
+  const IntersurfaceResult& r = d.map;
+  EXPECT_EQ(r.genus, 0);
+  EXPECT_EQ(r.added_features, 0);
+  ASSERT_EQ(r.a_to_b.size(), d.cat.vertices.size());
+  ASSERT_EQ(r.b_to_a.size(), d.lion.vertices.size());
+  expect_valid_points(r.a_to_b, d.lion);
+  expect_valid_points(r.b_to_a, d.cat);
+  expect_exact_features(r, d.cat, d.lion);
+  EXPECT_EQ(r.sphere_flipped, 0);
+  EXPECT_GT(r.distortion_a_to_b.symmetric_dirichlet, 4 - 1e-9);
+  EXPECT_GT(r.distortion_b_to_a.symmetric_dirichlet, 4 - 1e-9);
+  EXPECT_GT(r.seconds_parameterize, 0);
+  EXPECT_GE(r.seconds, r.seconds_parameterize + r.seconds_locate);
+}
+
+TEST(IntersurfaceMap, CatLionAgreesWithTheDenseMap) {
+  const CatLion& d = cat_lion();
+  ASSERT_EQ(d.lion2cat.size(), d.lion.vertices.size());
+  double sum = 0;
+  for (std::size_t l = 0; l < d.lion2cat.size(); ++l) sum += (d.map.b_on_a[l] - d.cat.vertices[d.lion2cat[l]]).norm();
+  const double mean = sum / double(d.lion2cat.size()) / diagonal(d.cat);
+  std::printf("cat-lion: mean distance to lion2cat %.4f of the cat's diagonal; symmetric Dirichlet %.3f / %.3f, "
+              "flipped %d / %d\n",
+              mean, d.map.distortion_a_to_b.symmetric_dirichlet, d.map.distortion_b_to_a.symmetric_dirichlet,
+              d.map.distortion_a_to_b.flipped, d.map.distortion_b_to_a.flipped);
+  EXPECT_LT(mean, kLion2CatTolerance);
+}
+
+TEST(IntersurfaceMap, RoundTripIsCloseToIdentity) {
+  // A -> B -> A: B's images on A interpolated at A's images on B.
+  const CatLion& d = cat_lion();
+  double sum = 0;
+  for (std::size_t v = 0; v < d.cat.vertices.size(); ++v) {
+    const SurfacePoint& p = d.map.a_to_b[v];
+    Vec3 back = Vec3::Zero();
+    for (int k = 0; k < 3; ++k) back += p.barycentric[k] * d.map.b_on_a[d.lion.triangles[p.triangle][k]];
+    sum += (back - d.cat.vertices[v]).norm();
+  }
+  EXPECT_LT(sum / double(d.cat.vertices.size()) / diagonal(d.cat), 0.01);
+}
+
+TEST(IntersurfaceMap, ZeroFeaturesGetAValidMap) {
+  const TriangleMesh a = read_mesh(shared_mesh("genus0/spot_low.obj"));
+  const TriangleMesh b = read_mesh(shared_mesh("genus0/sphere.obj"));
+  IntersurfaceOptions options;
+  options.sphere.effort = 0;
+  const IntersurfaceResult r = intersurface_map(a, b, {}, options);
+  EXPECT_EQ(r.added_features, 4);
+  ASSERT_EQ(r.features.size(), 4u);
+  expect_valid_points(r.a_to_b, b);
+  expect_valid_points(r.b_to_a, a);
+  expect_exact_features(r, a, b);
+  EXPECT_EQ(r.sphere_flipped, 0);
+  EXPECT_TRUE(std::isfinite(r.distortion_a_to_b.symmetric_dirichlet));
+}
+
+TEST(IntersurfaceMap, OneFeatureIsKeptAndCompleted) {
+  const TriangleMesh a = read_mesh(shared_mesh("genus0/spot_low.obj"));
+  const TriangleMesh b = read_mesh(shared_mesh("genus0/sphere.obj"));
+  IntersurfaceOptions options;
+  options.sphere.effort = 0;
+  const IntersurfaceResult r = intersurface_map(a, b, {{10, 20}}, options);
+  ASSERT_EQ(r.features.size(), 4u);
+  EXPECT_EQ(r.features[0].a, 10);
+  EXPECT_EQ(r.features[0].b, 20);
+  expect_exact_features(r, a, b);
+}
+
+std::string error_of(const TriangleMesh& a, const TriangleMesh& b, const std::vector<FeaturePair>& features) {
+  try {
+    intersurface_map(a, b, features);
+  } catch (const InvalidInput& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(IntersurfaceMap, DifferentGenusIsRefusedNamingBoth) {
+  const TriangleMesh torus = read_mesh(shared_mesh("higher-genus/torus.obj"));
+  const TriangleMesh spot = read_mesh(shared_mesh("genus0/spot_low.obj"));
+  EXPECT_THROW(intersurface_map(torus, spot, {}), TopologyError);
+  EXPECT_EQ(error_of(torus, spot, {}), "A has genus 1, B has genus 0; an inter-surface map needs equal genus");
+  EXPECT_EQ(error_of(spot, torus, {}), "A has genus 0, B has genus 1; an inter-surface map needs equal genus");
+}
+
+TEST(IntersurfaceMap, HigherGenusIsNotImplementedYet) {
+  const TriangleMesh torus = read_mesh(shared_mesh("higher-genus/torus.obj"));
+  EXPECT_THROW(intersurface_map(torus, torus, {}), TopologyError);
+  EXPECT_NE(error_of(torus, torus, {}).find("inter-surface maps of genus 1 and higher are not implemented yet"),
+            std::string::npos);
+}
+
+TEST(IntersurfaceMap, NonManifoldIsRefused) {
+  TriangleMesh bowtie = test::tetrahedron();  // two tetrahedra sharing vertex 0
+  for (int i = 1; i < 4; ++i) bowtie.vertices.push_back(bowtie.vertices[i] + Vec3(-3, 0, 0));
+  for (const Triangle& t : test::tetrahedron().triangles) {
+    Triangle u;
+    for (int k = 0; k < 3; ++k) u[k] = t[k] == 0 ? 0 : t[k] + 3;
+    bowtie.triangles.push_back(u);
+  }
+  const std::string message = error_of(bowtie, test::octahedron(), {});
+  EXPECT_EQ(message.rfind("A: ", 0), 0u) << message;
+  EXPECT_NE(message.find("non-manifold"), std::string::npos) << message;
+}
+
+TEST(IntersurfaceMap, FeaturesOutOfRangeOrRepeatedAreRefused) {
+  const TriangleMesh a = test::octahedron(), b = test::octahedron();
+  EXPECT_EQ(error_of(a, b, {{0, 0}, {1, 6}, {2, 2}}),
+            "feature pair 1: vertex 6 is out of range for B (6 vertices)");
+  EXPECT_EQ(error_of(a, b, {{-1, 0}}), "feature pair 0: vertex -1 is out of range for A (6 vertices)");
+  EXPECT_EQ(error_of(a, b, {{0, 0}, {0, 1}, {2, 2}}), "feature pairs 0 and 1 both use vertex 0 of A");
+}
+
+}  // namespace
+}  // namespace cmaps
