@@ -1,0 +1,158 @@
+"""Inter-surface maps (issue 5), genus 0 through the common sphere, via Python and `cmaps intersurface`: landmarks
+exact, agreement with cat-lion's approximate dense map, round trips, and one clear error for every unsupported pair."""
+import json
+
+import numpy as np
+import pytest
+
+from conftest import SHARED
+from test_cli import expect_failure, run
+
+CAT_LION = SHARED / "sets" / "cat-lion"
+CAT, LION = CAT_LION / "cat-00.off", CAT_LION / "lion-00.off"
+SPOT = SHARED / "genus0" / "spot_low.obj"
+SPHERE = SHARED / "genus0" / "sphere.obj"
+TORUS = SHARED / "higher-genus" / "torus.obj"
+LION2CAT_TOLERANCE = 0.05  # measured about 2 % (effort 0); a map ignoring the landmarks is off by 30 %
+
+
+def diagonal(vertices):
+    return float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0)))
+
+
+@pytest.fixture(scope="module")
+def cat_lion(native):
+    cat, lion = native.read_mesh(str(CAT)), native.read_mesh(str(LION))
+    landmarks = np.loadtxt(CAT_LION / "landmarks.txt", dtype=np.int64)
+    result = native.intersurface_map(cat, lion, landmarks, effort=0)
+    return cat, lion, landmarks, result
+
+
+def expect_valid(triangles, barycentric, target_triangles):
+    assert triangles.dtype == np.int32 and triangles.min() >= 0 and triangles.max() < len(target_triangles)
+    assert barycentric.min() >= 0 and np.allclose(barycentric.sum(axis=1), 1, atol=1e-12)
+
+
+def expect_exact(result, a, b):
+    """Every feature pair maps onto its partner vertex with a one-hot weight, both ways."""
+    for fa, fb in result["features"]:
+        t = result["a_to_b_triangle"][fa]
+        assert (result["a_to_b_barycentric"][fa] == (b[1][t] == fb)).all()
+        t = result["b_to_a_triangle"][fb]
+        assert (result["b_to_a_barycentric"][fb] == (a[1][t] == fa)).all()
+        assert (result["a_on_b"][fa] == b[0][fb]).all() and (result["b_on_a"][fb] == a[0][fa]).all()
+
+
+def test_cat_lion_landmarks_exact(cat_lion):
+    cat, lion, landmarks, r = cat_lion
+    assert landmarks.shape == (20, 2)
+    assert (r["features"] == landmarks).all() and r["added_features"] == 0 and r["genus"] == 0
+    assert r["a_to_b_triangle"].shape == (len(cat[0]),) and r["a_to_b_barycentric"].shape == (len(cat[0]), 3)
+    assert r["b_to_a_triangle"].shape == (len(lion[0]),) and r["b_on_a"].shape == lion[0].shape
+    expect_valid(r["a_to_b_triangle"], r["a_to_b_barycentric"], lion[1])
+    expect_valid(r["b_to_a_triangle"], r["b_to_a_barycentric"], cat[1])
+    expect_exact(r, cat, lion)
+    assert r["sphere_flipped"] == 0
+    assert all(np.isfinite(e) and e >= 4 - 1e-9 for e in r["symmetric_dirichlet"])
+    assert r["seconds"] >= r["seconds_parameterize"] > 0
+
+
+def test_cat_lion_agrees_with_the_dense_map(cat_lion):
+    cat, lion, _, r = cat_lion
+    lion2cat = np.loadtxt(CAT_LION / "lion2cat", dtype=np.int64)
+    mean = np.linalg.norm(r["b_on_a"] - cat[0][lion2cat], axis=1).mean() / diagonal(cat[0])
+    print(f"cat-lion: mean distance to lion2cat {mean:.4f} of the cat's diagonal, "
+          f"symmetric Dirichlet {r['symmetric_dirichlet']}, flipped {r['flipped']}")
+    assert mean < LION2CAT_TOLERANCE
+
+
+def test_round_trip_is_close_to_identity(cat_lion):
+    cat, lion, _, r = cat_lion
+    corners = lion[1][r["a_to_b_triangle"]]  # (nA, 3) lion vertices
+    back = np.einsum("ij,ijk->ik", r["a_to_b_barycentric"], r["b_on_a"][corners])
+    assert np.linalg.norm(back - cat[0], axis=1).mean() / diagonal(cat[0]) < 0.01
+
+
+def test_zero_features_get_a_valid_map(native):
+    a, b = native.read_mesh(str(SPOT)), native.read_mesh(str(SPHERE))
+    r = native.intersurface_map(a, b, [], effort=0)
+    assert r["added_features"] == 4 and r["features"].shape == (4, 2)
+    expect_valid(r["a_to_b_triangle"], r["a_to_b_barycentric"], b[1])
+    expect_valid(r["b_to_a_triangle"], r["b_to_a_barycentric"], a[1])
+    expect_exact(r, a, b)
+    assert r["sphere_flipped"] == 0
+
+
+def test_errors(native):
+    torus, spot = native.read_mesh(str(TORUS)), native.read_mesh(str(SPOT))
+    with pytest.raises(native.InvalidMeshError, match="A has genus 1, B has genus 0; an inter-surface map needs equal genus"):
+        native.intersurface_map(torus, spot, [])
+    with pytest.raises(native.InvalidMeshError, match="genus 1 and higher are not implemented yet"):
+        native.intersurface_map(torus, torus, [])
+    with pytest.raises(native.InvalidMeshError, match=r"feature pair 1: vertex 99999 is out of range for B"):
+        native.intersurface_map(spot, spot, [[0, 0], [1, 99999], [2, 2]])
+    with pytest.raises(ValueError, match=r"feature_pairs must have shape \(k, 2\)"):
+        native.intersurface_map(spot, spot, [0, 1, 2])
+
+
+# ---------------------------------------------------------------------------------------------- CLI
+
+
+def read_points(path):
+    rows = np.loadtxt(path, ndmin=2)
+    return rows[:, 0].astype(np.int64), rows[:, 1:]
+
+
+def read_obj_vertices(path):
+    return np.array([line.split()[1:4] for line in open(path) if line.startswith("v ")], dtype=float)
+
+
+def test_cli_writes_maps_and_json(cmaps_binary, native, tmp_path):
+    a, b = native.read_mesh(str(SPOT)), native.read_mesh(str(SPHERE))
+    features = tmp_path / "features.json"
+    features.write_text(json.dumps({"tip": [10, 20]}))
+    out = tmp_path / "maps"
+    result = run(cmaps_binary, "intersurface", SPOT, SPHERE, "--features", features, "-o", out, "--effort", "0", "--json")
+    assert result.returncode == 0, result.stderr
+    report = json.loads(result.stdout)
+    assert report["error"] is None and report["faces"] == [len(a[1]), len(b[1])]
+    assert report["features"] == 1 and len(report["added_features"]) == 3
+    assert len(report["symmetric_dirichlet"]) == len(report["flipped"]) == len(report["steiner"]) == 2
+    assert report["seconds"] > 0 and report["sphere_flipped"] == 0
+    assert sorted(p.name for p in out.iterdir()) == ["A_on_B.obj", "A_to_B.txt", "B_on_A.obj", "B_to_A.txt"]
+    for name, source, target in (("A", a, b), ("B", b, a)):
+        other = "B" if name == "A" else "A"
+        triangles, weights = read_points(out / f"{name}_to_{other}.txt")
+        assert len(triangles) == len(source[0])
+        expect_valid(triangles.astype(np.int32), weights, target[1])
+        positions = read_obj_vertices(out / f"{name}_on_{other}.obj")
+        expected = np.einsum("ij,ijk->ik", weights, target[0][target[1][triangles]])
+        assert np.allclose(positions, expected, atol=1e-5)
+    triangles, weights = read_points(out / "A_to_B.txt")
+    assert weights[10][list(b[1][triangles[10]]).index(20)] == 1  # the given pair maps exactly
+
+
+@pytest.mark.parametrize("meshes, reason", [
+    ((TORUS, SPOT), "A has genus 1, B has genus 0; an inter-surface map needs equal genus"),
+    ((TORUS, TORUS), "inter-surface maps of genus 1 and higher are not implemented yet"),
+])
+def test_cli_refuses_unsupported_pairs(cmaps_binary, tmp_path, meshes, reason):
+    expect_failure(run(cmaps_binary, "intersurface", *meshes, "-o", tmp_path / "out", "--json"), reason, True)
+    assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("features, reason", [
+    ({"nose": [5, 100000]}, 'feature "nose": vertex 100000 is out of range for'),
+    ({"nose": [5, None]}, 'feature "nose" has no vertex on'),
+    ({"nose": [5, 6], "ear": [5, 7]}, 'features "nose" and "ear" are both vertex 5 of'),
+    ({"nose": [5]}, 'feature "nose" lists 1 vertices for 2 meshes'),
+])
+def test_cli_refuses_bad_features(cmaps_binary, tmp_path, features, reason):
+    path = tmp_path / "features.json"
+    path.write_text(json.dumps(features))
+    expect_failure(run(cmaps_binary, "intersurface", SPOT, SPHERE, "--features", path, "-o", tmp_path / "out"), reason)
+
+
+def test_cli_usage(cmaps_binary, tmp_path):
+    result = run(cmaps_binary, "intersurface", SPOT, "-o", tmp_path / "out")
+    assert result.returncode == 2 and "intersurface needs 2 input meshes (A B), got 1" in result.stderr
