@@ -85,7 +85,9 @@ INSTANTIATE_TEST_SUITE_P(Meshes, ConstrainedWellSpread,
                          ::testing::Values(WellSpread{"genus0/bunny.off", 8}, WellSpread{"genus0/bunny.off", 20},
                                            WellSpread{"genus0/bunny.off", 40}, WellSpread{"heads/maxplanck.off", 8},
                                            WellSpread{"heads/maxplanck.off", 20},
-                                           WellSpread{"heads/maxplanck.off", 40}),
+                                           WellSpread{"heads/maxplanck.off", 40},
+                                           // Features at the tips of thin extremities: hooves, fingers.
+                                           WellSpread{"large/horse.ply", 20}, WellSpread{"large/armadillo.obj", 40}),
                          [](const auto& info) {
                            std::string name = info.param.path;
                            for (char& c : name)

@@ -84,10 +84,11 @@ int choose_first(const std::vector<ConsistentMember>& members, int requested) {
   throw InvalidInput("no mesh has every feature; one must, to seed the feature locations");
 }
 
-// The same mesh facing outwards, so that maps of all members turn alike.
+// The same mesh facing outwards (judged with its holes closed), so that maps
+// of all members turn alike.
 TriangleMesh outward(const TriangleMesh& mesh) {
   TriangleMesh m = mesh;
-  if (signed_volume(m) < 0)
+  if (signed_volume(close_holes(mesh).mesh) < 0)
     for (Triangle& t : m.triangles) std::swap(t[1], t[2]);
   return m;
 }
@@ -130,7 +131,8 @@ ConstrainedResult parameterize_to_locations(const ConsistentMember& member, cons
   const PresentFeatures p = present(member);
   std::vector<Vec3> targets;
   for (int k : p.names) targets.push_back(locations[k]);
-  return constrained_spherical_parameterization(member.mesh, p.vertices, targets, options, progress);
+  // Every member of a set faces outwards, so that their maps turn alike.
+  return constrained_spherical_parameterization(outward(member.mesh), p.vertices, targets, options, progress);
 }
 
 ConsistentResult consistent_spherical_parameterization(const std::vector<ConsistentMember>& members,
@@ -145,7 +147,7 @@ ConsistentResult consistent_spherical_parameterization(const std::vector<Consist
 
   // 1. Initial locations from the first member alone.
   const ConsistentMember& first = members[result.first];
-  const SphereResult seed = spherical_parameterization(outward(close_holes(first.mesh).mesh), options.sphere,
+  const SphereResult seed = spherical_parameterization(close_holes(outward(first.mesh)).mesh, options.sphere,
                                                       slice(progress, 0, share));
   for (int v : first.features) result.initial_locations.push_back(seed.sphere[v]);
 

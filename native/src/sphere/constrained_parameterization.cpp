@@ -108,17 +108,10 @@ ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mes
   const int nc = n + holes;  // vertices of the closed mesh
   result.holes = holes;
 
-  // Work on an outward-oriented, normalized copy, so that the layout on the
-  // mesh and on the sphere turn the same way.
+  // Maps turn like the mesh's own triangles (as unconstrained maps do), so
+  // targets taken from an unconstrained map of the same mesh always fit.
   std::vector<Vec3> positions = normalized_positions(closed.mesh.vertices, closed.mesh.triangles);
-  std::vector<Triangle> triangles = closed.mesh.triangles;
-  const bool inverted = signed_volume({positions, triangles}) < 0;
-  if (inverted) {
-    for (Triangle& t : triangles) std::swap(t[1], t[2]);
-    // The fans now run the other way round.
-    for (auto& loop : closed.loops) std::reverse(loop.begin() + 1, loop.end());
-    for (auto& ring : hole_rings) std::reverse(ring.begin() + 1, ring.end());
-  }
+  const std::vector<Triangle>& triangles = closed.mesh.triangles;
 
   // The unconstrained map guides the paths (below) and, without given
   // targets, provides them (step 1 of the thesis); a quick one suffices as a
@@ -289,7 +282,6 @@ ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mes
   const int steiner_count = total - nc;
   for (int f = 0; f < faces; ++f) {
     Triangle t = editable.triangles()[f];
-    if (inverted) std::swap(t[1], t[2]);
     if (is_fan(f)) {
       for (int& v : t) v = v >= n && v < nc ? n + steiner_count + (v - n) : out(v);
       result.hole_triangles.push_back(t);
@@ -303,7 +295,6 @@ ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mes
     result.hole_centres_sphere.push_back(sphere[closed.centre(h)]);
     result.hole_centres_position.push_back(closed.mesh.vertices[closed.centre(h)]);
     result.hole_features.push_back(hole_rings[h]);
-    if (inverted) std::reverse(result.hole_features.back().begin() + 1, result.hole_features.back().end());
   }
   result.sphere.assign(sphere.begin(), sphere.begin() + n);
   for (int v = nc; v < total; ++v) {
@@ -322,9 +313,6 @@ ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mes
     measured.vertices.push_back(x);
     out_sphere.push_back(s.sphere);
   }
-  // An inverted input maps with the opposite orientation: measure it mirrored.
-  if (inverted)
-    for (Vec3& p : out_sphere) p.x() = -p.x();
   result.report = measure_spherical_map(measured, out_sphere);
   for (int i = 0; i < k; ++i)
     result.max_constraint_error = std::max(result.max_constraint_error, (sphere[features[i]] - result.targets[i]).norm());
