@@ -14,21 +14,13 @@ namespace cmaps {
 namespace {
 
 using test::farthest_points;
+using test::diagonal;
 using test::shared_mesh;
 
 // Issue 4 aims at 2 %; measured 2.5-2.8 % with 8 features (BENCHMARKS.md).
 // A map that ignored the correspondence would be off by 20 % or more.
 constexpr double kGroundTruthTolerance = 0.03;
 
-
-double diagonal(const TriangleMesh& mesh) {
-  Vec3 lo = mesh.vertices.front(), hi = lo;
-  for (const Vec3& v : mesh.vertices) {
-    lo = lo.cwiseMin(v);
-    hi = hi.cwiseMax(v);
-  }
-  return (hi - lo).norm();
-}
 
 // Mean distance, relative to B's diagonal, between where vertex i of A maps
 // on B through the common sphere and vertex i of B.

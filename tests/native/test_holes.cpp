@@ -16,6 +16,7 @@
 namespace cmaps {
 namespace {
 
+using test::diagonal;
 using test::shared_mesh;
 
 // Boundary loops in order (each starting at its smallest vertex).
@@ -156,15 +157,6 @@ std::vector<ConsistentMember> faces() {
   const std::vector<int> chosen = hole_and_interior_features(members.front().mesh, 4, 6);
   for (auto& m : members) m.features = chosen;
   return members;
-}
-
-double diagonal(const TriangleMesh& mesh) {
-  Vec3 lo = mesh.vertices.front(), hi = lo;
-  for (const Vec3& v : mesh.vertices) {
-    lo = lo.cwiseMin(v);
-    hi = hi.cwiseMax(v);
-  }
-  return (hi - lo).norm();
 }
 
 TEST(ConsistentHoles, FacesWithTwoHolesMatchTheirKnownCorrespondence) {

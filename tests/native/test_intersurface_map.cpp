@@ -14,16 +14,11 @@
 namespace cmaps {
 namespace {
 
+using test::diagonal;
 using test::shared_mesh;
 
 // Measured 2.0 % (effort 0); a map ignoring the landmarks is off by 30 %.
 constexpr double kLion2CatTolerance = 0.05;
-
-double diagonal(const TriangleMesh& mesh) {
-  Vec3 lo = mesh.vertices.front(), hi = lo;
-  for (const Vec3& v : mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
-  return (hi - lo).norm();
-}
 
 void expect_valid_points(const std::vector<SurfacePoint>& points, const TriangleMesh& target) {
   for (const SurfacePoint& p : points) {

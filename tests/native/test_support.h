@@ -59,4 +59,14 @@ inline std::vector<int> farthest_points(const TriangleMesh& mesh, int count) {
   return chosen;
 }
 
+// Length of the bounding-box diagonal: the scale errors are measured against.
+inline double diagonal(const TriangleMesh& mesh) {
+  Vec3 lo = mesh.vertices.front(), hi = lo;
+  for (const Vec3& v : mesh.vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  return (hi - lo).norm();
+}
+
 }  // namespace cmaps::test
