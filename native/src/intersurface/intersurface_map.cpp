@@ -224,9 +224,13 @@ MapDistortion measure_intersurface_map(const TriangleMesh& source, const Triangl
   const std::vector<Vec3> mapped = surface_positions(target, image);
   const double source_area = total_area(source), target_area = total_area(target);
   const double scale = target_area > 0 ? std::sqrt(source_area / target_area) : 1;  // target to the source's area
+  // Normals of the target, turned to face like the source's when one of the
+  // two meshes lists its triangles inwards.
+  const double facing = signed_volume(source) * signed_volume(target) < 0 ? -1.0 : 1.0;
   const auto normal = [&](int t) {
     const Triangle& c = target.triangles[t];
-    return Vec3((target.vertices[c[1]] - target.vertices[c[0]]).cross(target.vertices[c[2]] - target.vertices[c[0]]));
+    return Vec3(facing *
+                (target.vertices[c[1]] - target.vertices[c[0]]).cross(target.vertices[c[2]] - target.vertices[c[0]]));
   };
 
   MapDistortion d;
