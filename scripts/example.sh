@@ -2,7 +2,9 @@
 # End-to-end example on the meshes in examples/meshes: check each mesh and map
 # it onto the sphere; map Spot with ten features pinned to the sphere; put the
 # two tessellations of Spot into correspondence (consistent maps, consistent
-# remeshes, geometry images). Results go to out/.
+# remeshes, geometry images); then, in headless Blender through the add-on's API,
+# Spot and the penguin: features, consistent set, animated morph, texture bake, a
+# .blend and renders (examples/blender_example.py). Results go to out/.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
@@ -30,6 +32,21 @@ echo "==> spot_low and spot in correspondence (examples/spot_set_features.json: 
   --features examples/spot_set_features.json -o out/spot_set --remesh 32 --json | tee out/spot_set.json
 
 echo
+echo "==> Blender: spot and penguin (examples/spot_penguin_features.json) through consistent_maps.api"
+rm -rf out/blender_example
+if ! blender -b --factory-startup --python-exit-code 1 -P examples/blender_example.py -- out/blender_example \
+  >out/blender_example.log 2>&1; then
+  tail -n 40 out/blender_example.log >&2
+  echo "the Blender example failed (full log: out/blender_example.log)" >&2
+  exit 1
+fi
+grep '^\[blender example\]' out/blender_example.log
+for file in example.blend morph_contact_sheet.png texture_transfer.png; do
+  test -s "out/blender_example/$file" || { echo "missing out/blender_example/$file" >&2; exit 1; }
+done
+
+echo
 echo "Written to out/: *_sphere.obj (input triangles on the unit sphere), spot_constrained_* (features"
 echo "pinned to the sphere, refined mesh with its Steiner vertices), spot_set/ (consistent maps, remeshes"
-echo "with one connectivity, geometry images, feature locations)."
+echo "with one connectivity, geometry images, feature locations), blender_example/ (example.blend with the"
+echo "animated morph and the baked texture, morph_contact_sheet.png, texture_transfer.png)."

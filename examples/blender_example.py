@@ -1,0 +1,216 @@
+"""The Blender part of the main job (scripts/example.sh), run headless:
+
+    blender -b --factory-startup --python-exit-code 1 -P examples/blender_example.py -- OUTDIR
+
+Loads two shipped meshes, places the features of a features file (name -> [vertex per mesh]) as
+CM: vertex groups, computes their consistent parameterization, morphs the first into the second
+(shape key, animated 0 -> 1 -> 0 over frames 1-24), gives the first a UV map (Smart UV Project)
+and a generated colour-grid texture and bakes that texture into the second's own UV layout. Writes
+OUTDIR/example.blend, OUTDIR/morph_contact_sheet.png (the 24 frames, left to right, top to bottom)
+and OUTDIR/texture_transfer.png (source and target side by side). Uses consistent_maps.api from
+addon/ (the native module is built there by scripts/setup.sh); nothing is installed.
+"""
+import json
+import math
+import sys
+import time
+from pathlib import Path
+
+import bpy
+import numpy as np
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "addon"))
+from consistent_maps import _native, api  # noqa: E402
+
+MESHES = ROOT / "examples" / "meshes"
+SOURCE, TARGET = "spot", "penguin"
+FEATURES = ROOT / "examples" / "spot_penguin_features.json"  # name -> [vertex on SOURCE, vertex on TARGET]
+FRAMES, COLUMNS, CELL = 24, 6, 160
+TEXTURE_SIZE, BAKE_SIZE = 1024, 1024
+
+args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+if len(args) != 1:
+    sys.exit("usage: blender -b --factory-startup --python-exit-code 1 -P examples/blender_example.py -- OUTDIR")
+OUT = Path(args[0]).resolve()
+OUT.mkdir(parents=True, exist_ok=True)
+START = time.perf_counter()
+
+
+def step(text, since):
+    print(f"[blender example] {text} ({time.perf_counter() - since:.2f} s)", flush=True)
+    return time.perf_counter()
+
+
+def load(name, turn):
+    vertices, triangles = _native.read_mesh(str(MESHES / f"{name}.obj"))
+    mesh = bpy.data.meshes.new(name)
+    mesh.from_pydata(vertices.tolist(), [], triangles.tolist())
+    mesh.update()
+    obj = bpy.data.objects.new(name, mesh)
+    bpy.context.scene.collection.objects.link(obj)
+    obj.rotation_euler = (math.pi / 2, 0, turn)  # the OBJ files are y-up, Blender is z-up; turn about z
+    for polygon in mesh.polygons:
+        polygon.use_smooth = True
+    return obj
+
+
+def select_only(obj):
+    for other in bpy.context.view_layer.objects:
+        other.select_set(other == obj)
+    bpy.context.view_layer.objects.active = obj
+
+
+def smart_uv(obj):
+    select_only(obj)
+    obj.data.uv_layers.new(name="UVMap")
+    bpy.ops.object.mode_set(mode='EDIT')
+    bpy.ops.mesh.select_all(action='SELECT')
+    bpy.ops.uv.smart_project(island_margin=0.02)
+    bpy.ops.object.mode_set(mode='OBJECT')
+
+
+def textured_material(name, image, uv_map="UVMap"):
+    material = bpy.data.materials.new(name)
+    material.use_nodes = True
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    uv = nodes.new("ShaderNodeUVMap")
+    uv.uv_map = uv_map
+    texture = nodes.new("ShaderNodeTexImage")
+    texture.image = image
+    links.new(uv.outputs["UV"], texture.inputs["Vector"])
+    links.new(texture.outputs["Color"], nodes["Principled BSDF"].inputs["Base Color"])
+    nodes.active = texture  # what Workbench's Texture colour shows
+    return material
+
+
+def world_bounds(objects):
+    corners = np.array([obj.matrix_world @ v.co for obj in objects for v in obj.data.vertices])
+    return corners.min(axis=0), corners.max(axis=0)
+
+
+def camera_on(objects, aspect):
+    """An orthographic camera looking along +y at the objects (world bounds), framing them with a margin."""
+    scene = bpy.context.scene
+    camera = scene.camera or bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
+    if camera.name not in scene.collection.objects:
+        scene.collection.objects.link(camera)
+    low, high = world_bounds(objects)
+    centre, size = (low + high) / 2, high - low
+    camera.data.type = 'ORTHO'
+    camera.data.ortho_scale = 1.1 * max(size[0], size[2] * aspect)
+    camera.location = (centre[0], low[1] - 10, centre[2])
+    camera.rotation_euler = (math.pi / 2, 0, 0)
+    camera.data.clip_end = 100
+    scene.camera = camera
+
+
+def render(width, height):
+    """Renders the scene (Workbench) and returns its pixels, (height, width, 4), rows top to bottom."""
+    scene = bpy.context.scene
+    scene.render.resolution_x, scene.render.resolution_y = width, height
+    scene.render.resolution_percentage = 100
+    path = OUT / "_frame.png"
+    scene.render.filepath = str(path)
+    bpy.ops.render.render(write_still=True)
+    image = bpy.data.images.load(str(path))
+    pixels = np.empty(width * height * 4, dtype=np.float32)
+    image.pixels.foreach_get(pixels)
+    bpy.data.images.remove(image)
+    path.unlink()
+    return pixels.reshape(height, width, 4)[::-1]
+
+
+def save_png(pixels, path):
+    height, width = pixels.shape[:2]
+    image = bpy.data.images.new(path.stem, width, height, alpha=True)
+    image.pixels.foreach_set(pixels[::-1].ravel())
+    image.filepath_raw = str(path)
+    image.file_format = 'PNG'
+    image.save()
+    bpy.data.images.remove(image)
+
+
+# -- 1. load the meshes and place the features ---------------------------------------------------------------
+t = START
+bpy.ops.wm.read_homefile(use_empty=True)
+# Spot faces -z and the penguin +z in their files: both turned to a three-quarter view of the camera at -y.
+source, target = load(SOURCE, math.pi * 0.8), load(TARGET, -math.pi * 0.2)
+features = json.loads(FEATURES.read_text())
+for name, (on_source, on_target) in features.items():
+    api.add_feature(source, name, on_source)
+    api.add_feature(target, name, on_target)
+t = step(f"loaded {SOURCE} ({len(source.data.vertices)} vertices) and {TARGET} ({len(target.data.vertices)}), "
+         f"{len(features)} features from {FEATURES.name} as CM: vertex groups", t)
+
+# -- 2. the consistent parameterization ----------------------------------------------------------------------
+stats = api.compute([source, target], effort=1)
+efficiencies = ", ".join(f"{name} {values['efficiency']:.3f}" for name, values in stats.items())
+t = step(f"consistent set computed; stretch efficiency {efficiencies}", t)
+
+# -- 3. the morph, animated ----------------------------------------------------------------------------------
+key = api.morph(source, target, align='features')
+api.animate_morph(source, 1, FRAMES, ping_pong=True)
+scene = bpy.context.scene
+scene.frame_start, scene.frame_end = 1, FRAMES
+t = step(f"shape key '{key.name}' on {SOURCE}, keyframed 0 -> 1 -> 0 over frames 1-{FRAMES}", t)
+
+# -- 4. a texture on the source, baked into the target's UV layout -------------------------------------------
+smart_uv(source)
+smart_uv(target)
+grid = bpy.data.images.new("Colour grid", TEXTURE_SIZE, TEXTURE_SIZE)
+grid.generated_type = 'COLOR_GRID'
+source.data.materials.append(textured_material(f"{SOURCE} grid", grid))
+baked = api.bake_texture(source, target, BAKE_SIZE)
+baked.pack()
+target.data.materials.append(textured_material(f"{TARGET} from {SOURCE}", baked))
+t = step(f"UV maps by Smart UV Project, {TEXTURE_SIZE}² colour grid on {SOURCE}, baked into {TARGET}'s UV "
+         f"layout ({BAKE_SIZE}² image '{baked.name}', packed)", t)
+
+# -- 5. the .blend -------------------------------------------------------------------------------------------
+scene.render.engine = 'BLENDER_WORKBENCH'
+scene.display.shading.light = 'STUDIO'
+scene.display.shading.color_type = 'TEXTURE'
+scene.render.image_settings.file_format = 'PNG'
+scene.render.film_transparent = False
+scene.view_settings.view_transform = 'Standard'
+scene.world = scene.world or bpy.data.worlds.new("World")
+scene.world.color = (0.6, 0.6, 0.6)
+target.location.x = 1.3 * (world_bounds([source])[1][0] - world_bounds([target])[0][0])
+scene.frame_set(1)
+blend = OUT / "example.blend"
+bpy.ops.wm.save_as_mainfile(filepath=str(blend))
+t = step(f"saved {blend}", t)
+
+# -- 6. renders ----------------------------------------------------------------------------------------------
+target.hide_render = True
+morphed = []
+for frame in (1, 1 + FRAMES // 2):  # frame the camera on both ends of the morph
+    scene.frame_set(frame)
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    evaluated = source.evaluated_get(depsgraph)
+    mesh = evaluated.to_mesh()
+    morphed += [evaluated.matrix_world @ v.co for v in mesh.vertices]
+    evaluated.to_mesh_clear()
+corners = np.array(morphed)
+low, high = corners.min(axis=0), corners.max(axis=0)
+frame_box = bpy.data.objects.new("_bounds", bpy.data.meshes.new("_bounds"))
+frame_box.data.from_pydata([tuple(low), tuple(high)], [], [])
+scene.collection.objects.link(frame_box)
+camera_on([frame_box], 1.0)
+bpy.data.objects.remove(frame_box)
+rows = math.ceil(FRAMES / COLUMNS)
+sheet = np.ones((rows * CELL, COLUMNS * CELL, 4), dtype=np.float32)
+for frame in range(1, FRAMES + 1):
+    scene.frame_set(frame)
+    row, column = divmod(frame - 1, COLUMNS)
+    sheet[row * CELL:(row + 1) * CELL, column * CELL:(column + 1) * CELL] = render(CELL, CELL)
+save_png(sheet, OUT / "morph_contact_sheet.png")
+t = step(f"rendered {FRAMES} frames (Workbench, {CELL}x{CELL}) to {OUT / 'morph_contact_sheet.png'}", t)
+
+scene.frame_set(1)
+target.hide_render = False
+camera_on([source, target], 2 / 1)
+save_png(render(640, 320), OUT / "texture_transfer.png")
+t = step(f"rendered {SOURCE} (its texture) and {TARGET} (the baked transfer) to {OUT / 'texture_transfer.png'}", t)
+step("done", START)
