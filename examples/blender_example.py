@@ -178,6 +178,8 @@ scene.world = scene.world or bpy.data.worlds.new("World")
 scene.world.color = (0.6, 0.6, 0.6)
 target.location.x = 1.3 * (world_bounds([source])[1][0] - world_bounds([target])[0][0])
 scene.frame_set(1)
+camera_on([source, target], 2 / 1)  # the file opens with the side-by-side view (F12 renders it)
+scene.render.resolution_x, scene.render.resolution_y = 640, 320
 blend = OUT / "example.blend"
 bpy.ops.wm.save_as_mainfile(filepath=str(blend))
 t = step(f"saved {blend}", t)
