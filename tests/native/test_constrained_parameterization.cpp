@@ -108,10 +108,15 @@ TEST_P(ConstrainedRandom, FourToThirtyTwoFeatures) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, ConstrainedRandom,
-                         ::testing::Values("genus0/bumpy.off", "genus0/cow.off", "genus0/decimated-knight.off",
-                                           "genus0/penguin.obj", "genus0/pig.off", "genus0/sphere.obj",
-                                           "genus0/spot_low.obj", "genus0/venus_small.off", "heads/goathead.obj",
-                                           "sets/defsphere/defSphere3.ply", "sets/cactus/cactus2.ply"),
+                         ::testing::Values("genus0/bumpy.off", "genus0/bunny.off", "genus0/camel.off",
+                                           "genus0/cat-low-resolution.obj", "genus0/cheburashka.off",
+                                           "genus0/cow.off", "genus0/decimated-knight.off", "genus0/hand_closed.obj",
+                                           "genus0/koala_low_resolution.obj", "genus0/penguin.obj", "genus0/pig.off",
+                                           "genus0/sphere.obj", "genus0/spot.obj", "genus0/spot_low.obj",
+                                           "genus0/venus_small.off", "heads/egea.off", "heads/goathead.obj",
+                                           "heads/mannequin.off", "heads/max_small.obj", "heads/maxplanck.off",
+                                           "heads/moaimoai.off", "sets/defsphere/defSphere3.ply",
+                                           "sets/cactus/cactus2.ply"),
                          [](const auto& info) {
                            std::string name = info.param;
                            for (char& c : name)
