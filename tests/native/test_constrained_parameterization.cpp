@@ -115,8 +115,10 @@ INSTANTIATE_TEST_SUITE_P(Meshes, ConstrainedRandom,
                                            "genus0/sphere.obj", "genus0/spot.obj", "genus0/spot_low.obj",
                                            "genus0/venus_small.off", "heads/egea.off", "heads/goathead.obj",
                                            "heads/mannequin.off", "heads/max_small.obj", "heads/maxplanck.off",
-                                           "heads/moaimoai.off", "sets/defsphere/defSphere3.ply",
-                                           "sets/cactus/cactus2.ply"),
+                                           "heads/moaimoai.off", "heads/nefertiti.obj", "large/armadillo.obj",
+                                           "large/bunny_hr.obj", "large/dinosaur.off", "large/gargoyle.off",
+                                           "large/handman.off", "large/horse.ply", "large/venus.off",
+                                           "sets/defsphere/defSphere3.ply", "sets/cactus/cactus2.ply"),
                          [](const auto& info) {
                            std::string name = info.param;
                            for (char& c : name)
