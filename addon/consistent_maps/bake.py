@@ -8,7 +8,7 @@ layout (Blender rasterizes and pads the seams). The target itself is not modifie
 import bpy
 import numpy as np
 
-from . import mapping, maps
+from . import mapping, maps, meshdata
 
 SOURCE_UV = "cm_bake_source_uv"
 
@@ -73,7 +73,7 @@ def bake(source, target, size=1024, margin=16):
     layer_data = source.data.uv_layers[uv_map].data
     source_uv = np.empty(len(layer_data) * 2, dtype=np.float32)
     layer_data.foreach_get("uv", source_uv)
-    uv = mapping.at_corners(maps.corner_landing(source, target), maps.triangles(source.data)[1],
+    uv = mapping.at_corners(maps.corner_landing(source, target), meshdata.loop_triangles(source.data)[1],
                             source_uv.reshape(-1, 2))
     result = bpy.data.images.new(f"{target.name} from {source.name}", size, size, alpha=False)
     scene, layer = bpy.context.scene, bpy.context.view_layer

@@ -44,22 +44,12 @@ def check(objects):
         raise MapError("\n".join(found))
 
 
-def triangles(mesh):
-    """(vertices (M, 3), corners (M, 3)) of the mesh's loop triangles, the input triangles of its map."""
-    mesh.calc_loop_triangles()
-    vertices = np.empty(len(mesh.loop_triangles) * 3, dtype=np.int32)
-    mesh.loop_triangles.foreach_get("vertices", vertices)
-    corners = np.empty(len(mesh.loop_triangles) * 3, dtype=np.int32)
-    mesh.loop_triangles.foreach_get("loops", corners)
-    return vertices.reshape(-1, 3), corners.reshape(-1, 3)
-
-
 def parameterization(obj):
     """The stored map of a checked object as a mapping.Parameterization."""
     _, refined_triangles, refined_sphere = results.surface(obj.data)
     input_triangle, input_vertices, input_weights = results.refinement(obj.data)
     return mapping.Parameterization(refined_sphere, refined_triangles, input_triangle, input_vertices,
-                                    input_weights, triangles(obj.data)[0])
+                                    input_weights, meshdata.loop_triangles(obj.data)[0])
 
 
 def positions(mesh):
@@ -77,7 +67,7 @@ def corner_landing(source, target):
     """Where each corner (loop) of target lands on source: from the target corner's own triangle, so
     per-corner source values are taken from the matching side of a seam."""
     target_map = parameterization(target)
-    _, corners = triangles(target.data)
+    _, corners = meshdata.loop_triangles(target.data)
     first = np.empty(len(target.data.loops), dtype=np.int64)
     first[corners.ravel()] = np.arange(corners.size)  # one loop triangle corner for every loop
     directions = mapping.corner_directions(target_map).reshape(-1, 3)[first]

@@ -33,14 +33,22 @@ def fingerprint(mesh):
     return digest.hexdigest()
 
 
+def loop_triangles(mesh):
+    """(vertices (m, 3), corners (m, 3)) int32 of the mesh's loop triangles: Blender's triangulation,
+    indexing the original vertices and loops."""
+    mesh.calc_loop_triangles()
+    vertices = np.empty(len(mesh.loop_triangles) * 3, dtype=np.int32)
+    mesh.loop_triangles.foreach_get("vertices", vertices)
+    corners = np.empty(len(mesh.loop_triangles) * 3, dtype=np.int32)
+    mesh.loop_triangles.foreach_get("loops", corners)
+    return vertices.reshape(-1, 3), corners.reshape(-1, 3)
+
+
 def arrays(mesh):
     """(vertices (n, 3) float64, triangles (m, 3) int32) of the mesh as stored (no Edit Mode sync)."""
-    mesh.calc_loop_triangles()
     co = np.empty(len(mesh.vertices) * 3, dtype=np.float32)
     mesh.vertices.foreach_get("co", co)
-    triangles = np.empty(len(mesh.loop_triangles) * 3, dtype=np.int32)
-    mesh.loop_triangles.foreach_get("vertices", triangles)
-    return co.reshape(-1, 3).astype(np.float64), triangles.reshape(-1, 3)
+    return co.reshape(-1, 3).astype(np.float64), loop_triangles(mesh)[0]
 
 
 def extract(obj):

@@ -5,7 +5,7 @@ through the common sphere, optionally aligned onto the source first (alignment).
 """
 import numpy as np
 
-from . import alignment, features, mapping, maps
+from . import alignment, features, mapping, maps, meshdata
 
 PREFIX = "→ "
 
@@ -33,7 +33,7 @@ def positions(source, target, align='features'):
     if align not in alignment.MODES:
         raise maps.MapError(f"Unknown alignment '{align}': use one of {', '.join(alignment.MODES)}")
     maps.check([source, target])
-    target_triangles, _ = maps.triangles(target.data)
+    target_triangles, _ = meshdata.loop_triangles(target.data)
     mapped = mapping.at_vertices(maps.vertex_landing(source, target), target_triangles,
                                  maps.positions(target.data))
     return _transform(source, target, align, mapped)(mapped)

@@ -8,7 +8,7 @@ requested layer is checked and computed before the target is modified.
 import bpy
 import numpy as np
 
-from . import features, mapping, maps
+from . import features, mapping, maps, meshdata
 
 FLOAT_FIELDS = {'FLOAT': ("value", 1), 'FLOAT2': ("vector", 2), 'FLOAT_VECTOR': ("vector", 3)}
 DOMAINS = ('POINT', 'CORNER')
@@ -77,7 +77,7 @@ class _Values:
     def __init__(self, source, target):
         self.source, self.target = source, target
         self._vertex = self._corner = None
-        self._source_triangles = maps.triangles(source.data)
+        self._source_triangles = meshdata.loop_triangles(source.data)
 
     def at(self, domain, values):
         if domain == 'POINT':

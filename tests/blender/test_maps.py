@@ -8,7 +8,7 @@ import time
 import bpy
 import numpy as np
 
-from consistent_maps import api, mapping, maps
+from consistent_maps import api, mapping, maps, meshdata
 from test_addon import BALL, OUT, ROOT, SHARED, VERSION, expect_error, load, make_set, select, snapshot, with_features
 
 CACTUS = SHARED / "sets" / "cactus"
@@ -66,7 +66,7 @@ def _colours(co):
 def test_vertex_landing_is_a_convex_combination_on_the_target():
     a, b = _pair()
     landing = maps.vertex_landing(a, b)
-    triangles, _ = maps.triangles(b.data)
+    triangles, _ = meshdata.loop_triangles(b.data)
     assert landing.triangle.shape == (len(a.data.vertices),)
     assert landing.triangle.min() >= 0 and landing.triangle.max() < len(triangles)
     assert (landing.barycentric >= 0).all() and np.allclose(landing.barycentric.sum(axis=1), 1)
