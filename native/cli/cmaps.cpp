@@ -43,7 +43,8 @@ const char* const kUsage = R"(usage:
                     [--seed N] [--effort 0|1|2] [--threads N] [--json]
   cmaps consistent IN IN ... --features FILE -o DIR [--remesh N] [--grid N] [--first K]
                    [--seed N] [--effort 0|1|2] [--threads N] [--json]
-  cmaps intersurface A B [--features FILE] -o DIR [--seed N] [--effort 0|1|2] [--threads N] [--json]
+  cmaps intersurface A B [--features FILE] -o DIR [--optimize R] [--seed N] [--effort 0|1|2]
+                     [--threads N] [--json]
   cmaps --help | --version
 
 commands:
@@ -78,7 +79,8 @@ commands:
            three barycentric weights) and DIR/A_on_B.obj, DIR/B_on_A.obj (the
            source's faces and vertex order, positions mapped onto the other
            surface). Without --features (or with fewer than 3 pairs) pairs are
-           added automatically.
+           added automatically. The map is optimized for symmetric distortion
+           (--optimize rounds, each moving A's vertices then B's).
 
 options:
   -o, --output OUT   output file of `sphere` and `constrained`; output
@@ -98,6 +100,9 @@ options:
                      (even, 2..4096; default 64)
   --first K          input seeding the feature locations (default: the first
                      input that has every feature)
+  --optimize R       rounds of distortion optimization of the inter-surface map
+                     (0..100, default 2; 0 = the plain composition of the
+                     two spherical maps)
   --seed N           random seed; equal seeds give equal results (default 1)
   --effort E         0 = fast preview, 1 = default, 2 = best quality
   --threads N        worker threads (default 2)
@@ -118,6 +123,8 @@ struct Arguments {
   std::string features, targets, refined_mesh;  // constrained only (features: consistent too)
   int remesh = 0, grid = 64, first = -1;        // consistent only
   bool remesh_given = false, grid_given = false, first_given = false;
+  int optimize = 2;  // intersurface only
+  bool optimize_given = false;
   std::uint64_t seed = 1;
   int effort = 1;
   int threads = 2;
@@ -157,6 +164,7 @@ Arguments parse(const std::vector<std::string>& args) {
     else if (arg == "--remesh") a.remesh = int(parse_integer(arg, value(), 2, 4096)), a.remesh_given = true;
     else if (arg == "--grid") a.grid = int(parse_integer(arg, value(), 2, 4096)), a.grid_given = true;
     else if (arg == "--first") a.first = int(parse_integer(arg, value(), 0, 1 << 20)), a.first_given = true;
+    else if (arg == "--optimize") a.optimize = int(parse_integer(arg, value(), 0, 100)), a.optimize_given = true;
     else if (arg.size() > 1 && arg[0] == '-') throw UsageError("unknown option '" + arg + "' (see cmaps --help)");
     else if (a.command.empty()) a.command = arg;
     else if (a.inputs.empty() || a.command == "consistent" || a.command == "intersurface") a.inputs.push_back(arg);
@@ -173,6 +181,8 @@ Arguments parse(const std::vector<std::string>& args) {
                      (a.command == "consistent" || a.command == "intersurface" ? " needs -o DIR" : " needs -o OUT") +
                      " (see cmaps --help)");
   if (a.command == "check" && !a.output.empty()) throw UsageError("check takes no -o");
+  if (a.command != "intersurface" && a.optimize_given)
+    throw UsageError(a.command + " takes no --optimize (only intersurface does)");
   if (a.command != "consistent") {
     for (const auto& [option, given] : {std::pair<const char*, bool>{"--remesh", a.remesh_given},
                                         {"--grid", a.grid_given},
@@ -760,6 +770,7 @@ void run_intersurface(const Arguments& args, Outcome& out) {
   options.sphere.seed = args.seed;
   options.sphere.effort = args.effort;
   options.sphere.threads = args.threads;
+  options.optimize_rounds = args.optimize;
   const cmaps::IntersurfaceResult result =
       with_terminal_progress(!args.json && isatty(STDERR_FILENO), [&](const cmaps::ProgressCallback& progress) {
         return cmaps::intersurface_map(a, b, features, options, progress);
@@ -796,7 +807,11 @@ void run_intersurface(const Arguments& args, Outcome& out) {
       .add_json("degenerate", JsonObject::array(std::vector<int>{ab.degenerate, ba.degenerate}))
       .add("sphere_flipped", result.sphere_flipped)
       .add("seconds_features", result.seconds_features)
+      .add_json("composition_dirichlet",
+                JsonObject::array(std::vector<double>{result.composition_a_to_b.symmetric_dirichlet,
+                                                      result.composition_b_to_a.symmetric_dirichlet}))
       .add("seconds_parameterize", result.seconds_parameterize)
+      .add("seconds_optimize", result.seconds_optimize)
       .add("seconds_locate", result.seconds_locate)
       .add("seconds_measure", result.seconds_measure)
       .add("seconds_compute", result.seconds)

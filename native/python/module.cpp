@@ -518,8 +518,10 @@ std::pair<py::array_t<std::int32_t>, py::array_t<double>> to_numpy(const std::ve
 }
 
 py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, const py::handle& pairs_data, int grid,
-                          std::uint64_t seed, int effort, int threads, const py::object& progress) {
+                          int optimize, std::uint64_t seed, int effort, int threads, const py::object& progress) {
   cmaps::IntersurfaceOptions options;
+  if (optimize < 0) raise(PyExc_ValueError, "optimize must be at least 0, got " + std::to_string(optimize));
+  options.optimize_rounds = optimize;
   options.sphere = sphere_options(seed, effort, threads, progress);
   require_grid_resolution(grid, "grid");
   options.grid = grid;
@@ -553,7 +555,10 @@ py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, co
   d["steiner"] = py::make_tuple(result.steiner_a, result.steiner_b);
   d["seconds"] = seconds;
   d["seconds_features"] = result.seconds_features;
+  d["composition_dirichlet"] = py::make_tuple(result.composition_a_to_b.symmetric_dirichlet,
+                                              result.composition_b_to_a.symmetric_dirichlet);
   d["seconds_parameterize"] = result.seconds_parameterize;
+  d["seconds_optimize"] = result.seconds_optimize;
   d["seconds_locate"] = result.seconds_locate;
   d["seconds_measure"] = result.seconds_measure;
   return d;
@@ -870,7 +875,8 @@ PYBIND11_MODULE(_native, m) {
         "least 3 present); locations: (k, 3), e.g. a set's 'feature_locations'. Returns (sphere, stats, extras)\n"
         "like constrained_spherical_parameterization.");
   m.def("intersurface_map", &intersurface_map, py::arg("mesh_a"), py::arg("mesh_b"),
-        py::arg("feature_pairs") = py::list(), py::kw_only(), py::arg("grid") = 64, py::arg("seed") = 1,
+        py::arg("feature_pairs") = py::list(), py::kw_only(), py::arg("grid") = 64, py::arg("optimize") = 2,
+        py::arg("seed") = 1,
         py::arg("effort") = 1, py::arg("threads") = 2, py::arg("progress") = py::none(),
         "Inter-surface map between two closed meshes of equal genus (genus 0 for now: through a consistent\n"
         "spherical parameterization of both). mesh_a, mesh_b: (vertices, triangles); feature_pairs: (k, 2)\n"
@@ -880,8 +886,9 @@ PYBIND11_MODULE(_native, m) {
         "'b_to_a_*'; 'a_on_b' (nA, 3), 'b_on_a' (nB, 3) the mapped positions; 'features' (k', 2) the pairs\n"
         "used (given, then added), 'added_features'; per direction (A to B, B to A) 'symmetric_dirichlet'\n"
         "(area-normalized, optimum 4, each source triangle mapped linearly onto its corners' images),\n"
-        "'flipped', 'degenerate'; 'sphere_flipped', 'stretch_efficiency' and 'steiner' of the two spherical\n"
-        "maps; 'seconds' and per stage. Raises InvalidMeshError for different genus, genus > 0,\n"
+        "'flipped', 'degenerate', and 'composition_dirichlet' before the distortion optimization (optimize:\n"
+        "its rounds, 0 = the plain composition of the spherical maps); 'sphere_flipped',\n"
+        "'stretch_efficiency' and 'steiner' of the two spherical maps; 'seconds' and per stage. Raises InvalidMeshError for different genus, genus > 0,\n"
         "non-manifold meshes or bad pairs, Cancelled when progress returns False.");
   m.def("consistent_remesh", &consistent_remesh, py::arg("surfaces"), py::arg("feature_locations"), py::arg("n"),
         py::kw_only(), py::arg("threads") = 2,

@@ -101,6 +101,35 @@ TEST(IntersurfaceMap, CatLionAgreesWithTheDenseMap) {
   EXPECT_LT(mean, kLion2CatTolerance);
 }
 
+TEST(IntersurfaceMap, OptimizationLowersTheDistortionWithoutFolding) {
+  // Measured 54.0 / 29.9 for the composition, 10.9 / 9.2 optimized (effort 0).
+  const IntersurfaceResult& r = cat_lion().map;
+  std::printf("cat-lion: symmetric Dirichlet %.2f / %.2f composed, %.2f / %.2f optimized\n",
+              r.composition_a_to_b.symmetric_dirichlet, r.composition_b_to_a.symmetric_dirichlet,
+              r.distortion_a_to_b.symmetric_dirichlet, r.distortion_b_to_a.symmetric_dirichlet);
+  EXPECT_LT(r.distortion_a_to_b.symmetric_dirichlet, 0.6 * r.composition_a_to_b.symmetric_dirichlet);
+  EXPECT_LT(r.distortion_b_to_a.symmetric_dirichlet, 0.6 * r.composition_b_to_a.symmetric_dirichlet);
+  EXPECT_EQ(r.sphere_flipped, 0);  // both spherical maps are still embeddings: the map is a bijection
+  EXPECT_GT(r.seconds_optimize, 0);
+}
+
+TEST(IntersurfaceMap, NoOptimizationKeepsThePlainComposition) {
+  const TriangleMesh a = read_mesh(shared_mesh("genus0/spot_low.obj"));
+  const TriangleMesh b = read_mesh(shared_mesh("genus0/sphere.obj"));
+  IntersurfaceOptions options;
+  options.sphere.effort = 0;
+  options.optimize_rounds = 0;
+  const IntersurfaceResult plain = intersurface_map(a, b, {}, options);
+  EXPECT_EQ(plain.distortion_a_to_b.symmetric_dirichlet, plain.composition_a_to_b.symmetric_dirichlet);
+  EXPECT_LT(plain.seconds_optimize, 0.01);
+  options.optimize_rounds = 2;
+  const IntersurfaceResult optimized = intersurface_map(a, b, {}, options);
+  EXPECT_EQ(optimized.composition_a_to_b.symmetric_dirichlet, plain.distortion_a_to_b.symmetric_dirichlet);
+  EXPECT_LT(optimized.distortion_a_to_b.symmetric_dirichlet, plain.distortion_a_to_b.symmetric_dirichlet);
+  EXPECT_LT(optimized.distortion_b_to_a.symmetric_dirichlet, plain.distortion_b_to_a.symmetric_dirichlet);
+  EXPECT_EQ(optimized.sphere_flipped, 0);
+}
+
 TEST(IntersurfaceMap, RoundTripIsCloseToIdentity) {
   // A -> B -> A: B's images on A interpolated at A's images on B.
   const CatLion& d = cat_lion();

@@ -81,6 +81,11 @@ def test_zero_features_get_a_valid_map(native):
     expect_valid(r["b_to_a_triangle"], r["b_to_a_barycentric"], a[1])
     expect_exact(r, a, b)
     assert r["sphere_flipped"] == 0
+    plain = native.intersurface_map(a, b, [], effort=0, optimize=0)
+    assert plain["symmetric_dirichlet"] == plain["composition_dirichlet"] == r["composition_dirichlet"]
+    assert all(d < c for d, c in zip(r["symmetric_dirichlet"], r["composition_dirichlet"]))
+    with pytest.raises(ValueError, match="optimize must be at least 0, got -1"):
+        native.intersurface_map(a, b, [], optimize=-1)
 
 
 def test_errors(native):
@@ -130,6 +135,17 @@ def test_cli_writes_maps_and_json(cmaps_binary, native, tmp_path):
         assert np.allclose(positions, expected, atol=1e-5)
     triangles, weights = read_points(out / "A_to_B.txt")
     assert weights[10][list(b[1][triangles[10]]).index(20)] == 1  # the given pair maps exactly
+    # The distortion optimization (default 2 rounds) improves on the plain composition in both directions.
+    assert all(d < c for d, c in zip(report["symmetric_dirichlet"], report["composition_dirichlet"]))
+    assert report["seconds_optimize"] > 0
+
+
+def test_cli_optimize_zero_keeps_the_composition(cmaps_binary, tmp_path):
+    out = tmp_path / "maps"
+    result = run(cmaps_binary, "intersurface", SPOT, SPHERE, "-o", out, "--optimize", "0", "--effort", "0", "--json")
+    assert result.returncode == 0, result.stderr
+    report = json.loads(result.stdout)
+    assert report["symmetric_dirichlet"] == report["composition_dirichlet"]
 
 
 @pytest.mark.parametrize("meshes, reason", [
@@ -156,3 +172,7 @@ def test_cli_refuses_bad_features(cmaps_binary, tmp_path, features, reason):
 def test_cli_usage(cmaps_binary, tmp_path):
     result = run(cmaps_binary, "intersurface", SPOT, "-o", tmp_path / "out")
     assert result.returncode == 2 and "intersurface needs 2 input meshes (A B), got 1" in result.stderr
+    result = run(cmaps_binary, "intersurface", SPOT, SPHERE, "-o", tmp_path / "out", "--optimize", "-1")
+    assert result.returncode == 2 and "--optimize expects an integer in [0, 100], got '-1'" in result.stderr
+    result = run(cmaps_binary, "sphere", SPOT, "-o", tmp_path / "s.obj", "--optimize", "1")
+    assert result.returncode == 2 and "sphere takes no --optimize (only intersurface does)" in result.stderr

@@ -3,13 +3,17 @@
 // barycentric weights) and vice versa, with corresponding feature vertices
 // mapped exactly onto each other.
 //
-// Genus 0 (this milestone): the composition through the common sphere. Both
-// meshes get a consistent spherical parameterization (thesis 3.2) with the
-// feature pairs as features, so each pair lands on one point of the sphere;
-// a vertex of A is mapped onto B by locating its sphere point in B's map.
-// The result is continuous and bijective as a map between the surfaces
-// (both spherical maps are); what is sampled here is its value at the
-// vertices.
+// Genus 0: the composition through the common sphere. Both meshes get a
+// consistent spherical parameterization (thesis 3.2) with the feature pairs
+// as features, so each pair lands on one point of the sphere; a vertex of A
+// is mapped onto B by locating its sphere point in B's map. Stretch-minimizing
+// maps of two different shapes do not agree between the features, so the
+// composition is then optimized directly for symmetric distortion (in the
+// spirit of Schreiner et al. 2004): each mesh's sphere points move so that
+// its triangles map onto the other surface as isometrically as possible,
+// never leaving the kernel of their spherical stars. The result stays
+// continuous and bijective as a map between the surfaces (both spherical
+// maps remain embeddings); what is sampled here is its value at the vertices.
 //
 // With fewer than 3 pairs (the consistent parameterization needs 3), pairs
 // are added automatically until there are 4: both meshes are mapped to the
@@ -49,6 +53,11 @@ struct SurfacePoint {
 struct IntersurfaceOptions {
   SphereOptions sphere;  // seed, effort, threads of the underlying parameterizations
   int grid = 64;         // genus 0: octahedral grid of the consistent parameterization (even)
+  // Genus 0: the composed map is then optimized for symmetric distortion,
+  // `rounds` times A -> B (moving A's sphere points over B) and B -> A, each
+  // at most `sweeps` sweeps over the vertices. 0 keeps the plain composition.
+  int optimize_rounds = 2;
+  int optimize_sweeps = 20;
 };
 
 // Distortion of the map sampled at the vertices: each triangle of the source
@@ -76,14 +85,18 @@ struct IntersurfaceResult {
   std::vector<FeaturePair> features;  // the pairs used: the given ones, then any added automatically
   int added_features = 0;             // how many of `features` were added
   int genus = 0;
-  // Genus 0: the two spherical maps (their stretch efficiency, flipped
-  // chordal triangles, Steiner vertices inserted on each mesh).
+  // Genus 0: the two spherical maps after optimization (their stretch
+  // efficiency, flipped chordal triangles, Steiner vertices inserted on each
+  // mesh) and the distortion of the plain composition before it.
   double efficiency_a = 0, efficiency_b = 0;
   int sphere_flipped = 0;
   int steiner_a = 0, steiner_b = 0;
+  MapDistortion composition_a_to_b, composition_b_to_a;
   // Wall time per stage: unconstrained maps for added features, the
-  // consistent parameterization, point location and conversion, measures.
-  double seconds_features = 0, seconds_parameterize = 0, seconds_locate = 0, seconds_measure = 0, seconds = 0;
+  // consistent parameterization, the distortion optimization, point location
+  // and conversion, measures.
+  double seconds_features = 0, seconds_parameterize = 0, seconds_optimize = 0, seconds_locate = 0,
+         seconds_measure = 0, seconds = 0;
 };
 
 // Throws TopologyError for a mesh that is not one closed, manifold,

@@ -31,6 +31,9 @@ MeshReport check_mesh(const TriangleMesh& mesh);
 // Volume enclosed by a closed mesh: negative when its triangles face inwards.
 double signed_volume(const TriangleMesh& mesh);
 
+// Sum of the triangles' areas.
+double surface_area(const TriangleMesh& mesh);
+
 // One line describing the report (for CLI output and error messages).
 std::string summarize(const MeshReport& report);
 

@@ -9,12 +9,16 @@
 #include <limits>
 #include <map>
 #include <string>
+#include <tuple>
 
 #include "common/parallel_for.h"
 #include "consistent_maps/consistent_parameterization.h"
 #include "consistent_maps/errors.h"
 #include "consistent_maps/mesh_check.h"
 #include "consistent_maps/sphere_locator.h"
+#include "consistent_maps/stretch_metric.h"
+#include "intersurface/map_optimizer.h"
+#include "intersurface/symmetric_dirichlet.h"
 
 namespace cmaps {
 namespace {
@@ -195,11 +199,27 @@ std::vector<SurfacePoint> map_through_sphere(const std::vector<Vec3>& source_sph
   return points;
 }
 
-double total_area(const TriangleMesh& mesh) {
-  double area = 0;
-  for (const Triangle& t : mesh.triangles)
-    area += 0.5 * (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]).norm();
-  return area;
+
+// Lowers the symmetric distortion of the composed map (see MapOptimizer);
+// feature vertices stay on their common points.
+void optimize_composition(const TriangleMesh& a, ConstrainedResult& map_a, const TriangleMesh& b,
+                          ConstrainedResult& map_b, const std::vector<FeaturePair>& features,
+                          const IntersurfaceOptions& options, const ProgressCallback& progress) {
+  ParameterizedSurface pa = parameterized_surface(a, map_a), pb = parameterized_surface(b, map_b);
+  std::vector<char> fixed_a(pa.sphere.size(), 0), fixed_b(pb.sphere.size(), 0);
+  for (const FeaturePair& f : features) fixed_a[f.a] = fixed_b[f.b] = 1;
+  MapOptimizer optimizer({pa.surface, pa.sphere, fixed_a}, {pb.surface, pb.sphere, fixed_b}, options.sphere.threads);
+  bool cancelled = false;
+  optimizer.optimize(options.optimize_rounds, options.optimize_sweeps, 1e-3, [&](double done) {
+    cancelled = progress && !progress(done, "optimizing the map");
+    return !cancelled;
+  });
+  if (cancelled) throw Cancelled();
+  for (const auto& [p, map] : {std::pair<const ParameterizedSurface&, ConstrainedResult&>{pa, map_a}, {pb, map_b}}) {
+    const size_t n = map.sphere.size();
+    std::copy(p.sphere.begin(), p.sphere.begin() + n, map.sphere.begin());
+    for (size_t i = 0; i < map.steiner.size(); ++i) map.steiner[i].sphere = p.sphere[n + i];
+  }
 }
 
 }  // namespace
@@ -222,7 +242,7 @@ MapDistortion measure_intersurface_map(const TriangleMesh& source, const Triangl
     throw InvalidInput("the map has " + std::to_string(image.size()) + " images for " +
                        std::to_string(source.vertices.size()) + " vertices");
   const std::vector<Vec3> mapped = surface_positions(target, image);
-  const double source_area = total_area(source), target_area = total_area(target);
+  const double source_area = surface_area(source), target_area = surface_area(target);
   const double scale = target_area > 0 ? std::sqrt(source_area / target_area) : 1;  // target to the source's area
   // Normals of the target, turned to face like the source's when one of the
   // two meshes lists its triangles inwards.
@@ -238,26 +258,19 @@ MapDistortion measure_intersurface_map(const TriangleMesh& source, const Triangl
   for (const Triangle& t : source.triangles) {
     const Vec3 &p0 = source.vertices[t[0]], &p1 = source.vertices[t[1]], &p2 = source.vertices[t[2]];
     const Vec3 q0 = scale * mapped[t[0]], q1 = scale * mapped[t[1]], q2 = scale * mapped[t[2]];
-    const Vec3 np = (p1 - p0).cross(p2 - p0), nq = (q1 - q0).cross(q2 - q0);
-    const double ap = 0.5 * np.norm(), aq = 0.5 * nq.norm();
+    const Vec3 nq = (q1 - q0).cross(q2 - q0);
     const Vec3 surface_normal = normal(image[t[0]].triangle) + normal(image[t[1]].triangle) +
                                 normal(image[t[2]].triangle);
     if (nq.dot(surface_normal) < 0) ++d.flipped;
+    const Vec3 p[3] = {p0, p1, p2}, q[3] = {q0, q1, q2};
+    double ap;
+    const double e = symmetric_dirichlet(p, q, &ap);
     if (ap <= 0) continue;  // zero-area source triangles carry no energy
-    if (aq <= 1e-14 * source_area) {
+    if (0.5 * nq.norm() <= 1e-14 * source_area) {
       ++d.degenerate;
       continue;
     }
-    // |J|_F^2 = sum_i cot(angle_i of P) |opposite edge of Q|^2 / (2 area P); |J^-1|_F^2 = |J|_F^2 (ap/aq)^2.
-    const Vec3 p[3] = {p0, p1, p2}, q[3] = {q0, q1, q2};
-    double dirichlet = 0;
-    for (int i = 0; i < 3; ++i) {
-      const Vec3 u = p[(i + 1) % 3] - p[i], v = p[(i + 2) % 3] - p[i];
-      const double cot = u.dot(v) / u.cross(v).norm();
-      dirichlet += cot * (q[(i + 2) % 3] - q[(i + 1) % 3]).squaredNorm();
-    }
-    dirichlet /= 2 * ap;
-    energy += ap * dirichlet * (1 + (ap / aq) * (ap / aq));
+    energy += ap * e;
     area += ap;
   }
   d.symmetric_dirichlet = area > 0 ? energy / area : std::numeric_limits<double>::infinity();
@@ -307,29 +320,51 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
   consistent.sphere = options.sphere;
   consistent.grid = options.grid;
   const ConsistentResult maps = consistent_spherical_parameterization(
-      members, consistent, slice(progress, features.size() < 3 ? 0.2 : 0, 0.95));
+      members, consistent, slice(progress, features.size() < 3 ? 0.2 : 0, 0.8));
   result.seconds_parameterize = seconds_since(stage);
-  const ConstrainedResult &map_a = maps.members[0], &map_b = maps.members[1];
-  result.efficiency_a = map_a.report.efficiency;
-  result.efficiency_b = map_b.report.efficiency;
-  result.sphere_flipped = map_a.report.flipped + map_b.report.flipped;
+  ConstrainedResult map_a = maps.members[0], map_b = maps.members[1];  // the optimization moves their sphere points
   result.steiner_a = int(map_a.steiner.size());
   result.steiner_b = int(map_b.steiner.size());
 
-  stage = Clock::now();
-  if (progress && !progress(0.95, "locating vertices on the other mesh")) throw Cancelled();
   std::vector<std::pair<int, int>> a_to_b, b_to_a;
   for (const FeaturePair& f : result.features) a_to_b.push_back({f.a, f.b}), b_to_a.push_back({f.b, f.a});
   const int threads = options.sphere.threads;
-  result.a_to_b = map_through_sphere(map_a.sphere, b, map_b, a_to_b, threads);
-  result.b_to_a = map_through_sphere(map_b.sphere, a, map_a, b_to_a, threads);
+  const auto compose = [&] {
+    result.a_to_b = map_through_sphere(map_a.sphere, b, map_b, a_to_b, threads);
+    result.b_to_a = map_through_sphere(map_b.sphere, a, map_a, b_to_a, threads);
+  };
+  const auto measure = [&](MapDistortion& forward, MapDistortion& backward) {
+    forward = measure_intersurface_map(a, b, result.a_to_b);
+    backward = measure_intersurface_map(b, a, result.b_to_a);
+  };
+
+  stage = Clock::now();
+  if (options.optimize_rounds > 0 && options.optimize_sweeps > 0) {
+    compose();
+    measure(result.composition_a_to_b, result.composition_b_to_a);
+    optimize_composition(a, map_a, b, map_b, result.features, options, slice(progress, 0.8, 0.95));
+  }
+  result.seconds_optimize = seconds_since(stage);
+  for (const auto& [mesh, map, efficiency] :
+       {std::tuple<const TriangleMesh&, const ConstrainedResult&, double&>{a, map_a, result.efficiency_a},
+        {b, map_b, result.efficiency_b}}) {
+    const ParameterizedSurface p = parameterized_surface(mesh, map);
+    const SphericalMapReport report = measure_spherical_map(p.surface, p.sphere);
+    efficiency = report.efficiency;
+    result.sphere_flipped += report.flipped;
+  }
+
+  stage = Clock::now();
+  if (progress && !progress(0.95, "locating vertices on the other mesh")) throw Cancelled();
+  compose();
   result.a_on_b = surface_positions(b, result.a_to_b);
   result.b_on_a = surface_positions(a, result.b_to_a);
   result.seconds_locate = seconds_since(stage);
 
   stage = Clock::now();
-  result.distortion_a_to_b = measure_intersurface_map(a, b, result.a_to_b);
-  result.distortion_b_to_a = measure_intersurface_map(b, a, result.b_to_a);
+  measure(result.distortion_a_to_b, result.distortion_b_to_a);
+  if (options.optimize_rounds <= 0 || options.optimize_sweeps <= 0)
+    result.composition_a_to_b = result.distortion_a_to_b, result.composition_b_to_a = result.distortion_b_to_a;
   result.seconds_measure = seconds_since(stage);
   if (progress && !progress(1, "done")) throw Cancelled();
   result.seconds = seconds_since(start);

@@ -281,4 +281,11 @@ double signed_volume(const TriangleMesh& mesh) {
   return volume / 6;
 }
 
+double surface_area(const TriangleMesh& mesh) {
+  double area = 0;
+  for (const Triangle& t : mesh.triangles)
+    area += 0.5 * (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]).norm();
+  return area;
+}
+
 }  // namespace cmaps

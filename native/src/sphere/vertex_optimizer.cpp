@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "common/parallel_for.h"
+#include "common/coloured_sweeps.h"
 
 namespace cmaps {
 
@@ -163,51 +163,12 @@ double VertexOptimizer::optimize_vertex(int v, int iterations) {
 }
 
 void VertexOptimizer::optimize_all(int max_sweeps, double tolerance) {
-  const int n = static_cast<int>(sphere_.size());
-  // Neighbour lists and a greedy colouring of the current mesh.
-  std::vector<std::vector<int>> neighbours(n);
-  const auto& triangles = mesh_.triangles();
-  for (size_t f = 0; f < triangles.size(); ++f)
-    if (mesh_.face_active(f)) {
-      const Triangle& t = triangles[f];
-      for (int k = 0; k < 3; ++k) neighbours[t[k]].push_back(t[(k + 1) % 3]);
-    }
-  std::vector<int> colour(n, -1);
-  std::vector<std::vector<int>> classes;
-  std::vector<char> taken;
-  for (int v = 0; v < n; ++v) {
-    if (!mesh_.vertex_active(v)) continue;
-    taken.assign(classes.size() + 1, 0);
-    for (int w : neighbours[v])
-      if (colour[w] >= 0) taken[colour[w]] = 1;
-    const int c = static_cast<int>(std::find(taken.begin(), taken.end(), 0) - taken.begin());
-    if (c == static_cast<int>(classes.size())) classes.emplace_back();
-    colour[v] = c;
-    classes[c].push_back(v);
-  }
-
-  std::vector<char> active(n, 0), next(n, 0);
-  for (int v = 0; v < n; ++v) active[v] = mesh_.vertex_active(v);
-  std::vector<double> moved(n, 0);
-  for (int sweep = 0; sweep < max_sweeps; ++sweep) {
-    for (const auto& members : classes) {
-      // Small classes are not worth a second thread.
-      parallel_for(members.size(), members.size() > 2048 ? threads_ : 1, [&](size_t i) {
-        const int v = members[i];
-        moved[v] = active[v] ? optimize_vertex(v, 1) : 0;
-      });
-    }
-    bool any = false;
-    std::fill(next.begin(), next.end(), 0);
-    for (int v = 0; v < n; ++v)
-      if (active[v] && moved[v] > tolerance) {
-        any = true;
-        next[v] = 1;
-        for (int w : neighbours[v]) next[w] = 1;
-      }
-    if (!any) break;
-    active.swap(next);
-  }
+  const VertexColouring colouring = colour_vertices(
+      static_cast<int>(sphere_.size()), mesh_.triangles(), [&](size_t f) { return mesh_.face_active(f); },
+      [&](int v) { return mesh_.vertex_active(v); });
+  coloured_sweeps(
+      colouring, threads_, max_sweeps, tolerance, [&](int v) { return optimize_vertex(v, 1); },
+      [](int) { return true; }, [](const std::vector<int>&) {});
 }
 
 }  // namespace cmaps
