@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -184,8 +185,33 @@ TEST(ConsistentHoles, FacesWithTwoHolesMatchTheirKnownCorrespondence) {
               << r.members[j].report.efficiency << "\n";
     EXPECT_LT(error, 0.03) << j;
   }
-  // Consistent remeshes: one connectivity, holes left open.
+  // Consistent remeshes: one connectivity, holes left open, ending on each
+  // member's own boundary: every vertex of a remesh edge that only one
+  // triangle uses lies on a boundary edge of the input.
   const ConsistentRemesh remesh = consistent_remesh(members, r, 32);
+  std::map<std::pair<int, int>, int> edge_uses;
+  for (const Triangle& t : remesh.triangles)
+    for (int k = 0; k < 3; ++k) ++edge_uses[std::minmax(t[k], t[(k + 1) % 3])];
+  std::set<int> rim;
+  for (const auto& [edge, uses] : edge_uses)
+    if (uses == 1) rim.insert(edge.first), rim.insert(edge.second);
+  EXPECT_GT(rim.size(), 20u);
+  for (size_t i = 0; i < members.size(); ++i) {
+    const TriangleMesh& mesh = members[i].mesh;
+    double worst = 0;
+    for (int v : rim) {
+      const Vec3& x = remesh.positions[i][v];
+      double nearest = std::numeric_limits<double>::infinity();
+      for (const std::vector<int>& loop : loops_of(mesh))
+        for (size_t k = 0; k < loop.size(); ++k) {
+          const Vec3 &a = mesh.vertices[loop[k]], &b = mesh.vertices[loop[(k + 1) % loop.size()]];
+          const double t = std::clamp((x - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+          nearest = std::min(nearest, (a + t * (b - a) - x).norm());
+        }
+      worst = std::max(worst, nearest);
+    }
+    EXPECT_LT(worst, 1e-9 * diagonal(mesh)) << "member " << i;
+  }
   const int in_hole = static_cast<int>(std::count(remesh.in_hole.begin(), remesh.in_hole.end(), 1));
   EXPECT_GT(in_hole, 0);
   EXPECT_LT(remesh.triangles.size(), 8u * 32 * 32);

@@ -1,7 +1,9 @@
 #include "consistent_maps/consistent_parameterization.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <limits>
 #include <set>
 #include <string>
 
@@ -178,6 +180,39 @@ ConsistentResult consistent_spherical_parameterization(const std::vector<Consist
   return result;
 }
 
+namespace {
+
+// A hole of every member is the spherical polygon of its features' common
+// locations, bounded by great-circle arcs that map onto the hole's boundary
+// on every member. Samples just outside a hole move to the nearest point of
+// these arcs, so the remeshes end on the boundary itself rather than on a
+// staircase of grid edges (features stay put).
+void snap_to_hole_boundaries(ConsistentRemesh& remesh, const std::vector<std::array<Vec3, 2>>& arcs) {
+  if (arcs.empty()) return;
+  std::vector<char> rim(remesh.sphere.size(), 0), feature(remesh.sphere.size(), 0);
+  for (int v : remesh.feature_vertices) feature[v] = 1;
+  for (const Triangle& t : remesh.triangles)
+    for (int k = 0; k < 3; ++k)
+      if (remesh.in_hole[t[k]])
+        for (int j : {1, 2})
+          if (!remesh.in_hole[t[(k + j) % 3]]) rim[t[(k + j) % 3]] = 1;
+  for (size_t s = 0; s < rim.size(); ++s) {
+    if (!rim[s] || feature[s]) continue;
+    const Vec3 x = remesh.sphere[s];
+    Vec3 nearest = x;
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& [a, b] : arcs) {
+      const Vec3 normal = a.cross(b).normalized();
+      Vec3 p = (x - x.dot(normal) * normal).normalized();
+      if (a.cross(p).dot(normal) < 0 || p.cross(b).dot(normal) < 0) p = (x - a).norm() < (x - b).norm() ? a : b;
+      if ((p - x).norm() < best) best = (p - x).norm(), nearest = p;
+    }
+    remesh.sphere[s] = nearest;
+  }
+}
+
+}  // namespace
+
 ConsistentRemesh consistent_remesh(const std::vector<ConsistentMember>& members, const ConsistentResult& result,
                                    int n, int threads) {
   if (members.size() != result.members.size()) throw InvalidInput("members do not match the computed set");
@@ -187,20 +222,30 @@ ConsistentRemesh consistent_remesh(const std::vector<ConsistentMember>& members,
   remesh.triangles = grid.triangles;
   remesh.feature_vertices = snap_features(remesh.sphere, result.feature_locations);
   remesh.in_hole.assign(remesh.sphere.size(), 0);
+  std::vector<ParameterizedSurface> surfaces;
+  std::vector<std::array<Vec3, 2>> arcs;  // hole boundaries on the sphere
   for (size_t i = 0; i < members.size(); ++i) {
     const ConstrainedResult& map = result.members[i];
-    const ParameterizedSurface p = parameterized_surface(members[i].mesh, map, true);
-    remesh.positions.push_back(resample(p.surface, p.sphere, remesh.sphere, threads));
+    surfaces.push_back(parameterized_surface(members[i].mesh, map, true));
     if (map.holes == 0) continue;
     // Samples on the temporary fans lie in a hole of this member.
+    const ParameterizedSurface& p = surfaces.back();
     const SphereLocator locator(p.sphere, p.surface.triangles);
     const auto at = locator.locate_all(remesh.sphere, threads);
     const int real = static_cast<int>(map.triangles.size());
     for (size_t s = 0; s < at.size(); ++s)
       if (at[s].triangle >= real) remesh.in_hole[s] = 1;
+    const std::vector<int> names = present(members[i]).names;  // hole_features index the member's own features
+    for (const std::vector<int>& ring : map.hole_features)
+      for (size_t k = 0; k < ring.size(); ++k)
+        arcs.push_back({result.feature_locations[names[ring[k]]],
+                        result.feature_locations[names[ring[(k + 1) % ring.size()]]]});
   }
   // Features on a hole boundary are where they belong, not in the hole.
   for (int v : remesh.feature_vertices) remesh.in_hole[v] = 0;
+  snap_to_hole_boundaries(remesh, arcs);
+  for (const ParameterizedSurface& p : surfaces)
+    remesh.positions.push_back(resample(p.surface, p.sphere, remesh.sphere, threads));
   std::vector<Triangle> kept;
   for (const Triangle& t : remesh.triangles)
     if (!remesh.in_hole[t[0]] && !remesh.in_hole[t[1]] && !remesh.in_hole[t[2]]) kept.push_back(t);
