@@ -102,7 +102,7 @@ options:
                      input that has every feature)
   --optimize R       rounds of distortion optimization of the inter-surface map
                      (0..100, default 2; 0 = the plain composition of the
-                     two spherical maps)
+                     two spherical maps, without A's map refitted to B's)
   --seed N           random seed; equal seeds give equal results (default 1)
   --effort E         0 = fast preview, 1 = default, 2 = best quality
   --threads N        worker threads (default 2)
@@ -771,6 +771,7 @@ void run_intersurface(const Arguments& args, Outcome& out) {
   options.sphere.effort = args.effort;
   options.sphere.threads = args.threads;
   options.optimize_rounds = args.optimize;
+  if (args.optimize == 0) options.correspondence_weight = 0;  // the plain composition
   const cmaps::IntersurfaceResult result =
       with_terminal_progress(!args.json && isatty(STDERR_FILENO), [&](const cmaps::ProgressCallback& progress) {
         return cmaps::intersurface_map(a, b, features, options, progress);

@@ -522,6 +522,7 @@ py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, co
   cmaps::IntersurfaceOptions options;
   if (optimize < 0) raise(PyExc_ValueError, "optimize must be at least 0, got " + std::to_string(optimize));
   options.optimize_rounds = optimize;
+  if (optimize == 0) options.correspondence_weight = 0;  // the plain composition
   options.sphere = sphere_options(seed, effort, threads, progress);
   require_grid_resolution(grid, "grid");
   options.grid = grid;

@@ -17,8 +17,8 @@ namespace {
 using test::diagonal;
 using test::shared_mesh;
 
-// Measured 2.0 % (effort 0); a map ignoring the landmarks is off by 30 %.
-constexpr double kLion2CatTolerance = 0.05;
+// Measured 1.6 % (effort 0; 2.0 % for the plain composition); a map ignoring the landmarks is off by 30 %.
+constexpr double kLion2CatTolerance = 0.03;
 
 void expect_valid_points(const std::vector<SurfacePoint>& points, const TriangleMesh& target) {
   for (const SurfacePoint& p : points) {
@@ -102,13 +102,13 @@ TEST(IntersurfaceMap, CatLionAgreesWithTheDenseMap) {
 }
 
 TEST(IntersurfaceMap, OptimizationLowersTheDistortionWithoutFolding) {
-  // Measured 54.0 / 29.9 for the composition, 10.9 / 9.2 optimized (effort 0).
+  // Measured 54.0 / 29.9 for the plain composition, 6.4 / 6.1 refitted and optimized (effort 0).
   const IntersurfaceResult& r = cat_lion().map;
   std::printf("cat-lion: symmetric Dirichlet %.2f / %.2f composed, %.2f / %.2f optimized\n",
               r.composition_a_to_b.symmetric_dirichlet, r.composition_b_to_a.symmetric_dirichlet,
               r.distortion_a_to_b.symmetric_dirichlet, r.distortion_b_to_a.symmetric_dirichlet);
-  EXPECT_LT(r.distortion_a_to_b.symmetric_dirichlet, 0.6 * r.composition_a_to_b.symmetric_dirichlet);
-  EXPECT_LT(r.distortion_b_to_a.symmetric_dirichlet, 0.6 * r.composition_b_to_a.symmetric_dirichlet);
+  EXPECT_LT(r.distortion_a_to_b.symmetric_dirichlet, 0.3 * r.composition_a_to_b.symmetric_dirichlet);
+  EXPECT_LT(r.distortion_b_to_a.symmetric_dirichlet, 0.3 * r.composition_b_to_a.symmetric_dirichlet);
   EXPECT_EQ(r.sphere_flipped, 0);  // both spherical maps are still embeddings: the map is a bijection
   EXPECT_GT(r.seconds_optimize, 0);
 }
@@ -119,10 +119,12 @@ TEST(IntersurfaceMap, NoOptimizationKeepsThePlainComposition) {
   IntersurfaceOptions options;
   options.sphere.effort = 0;
   options.optimize_rounds = 0;
+  options.correspondence_weight = 0;
   const IntersurfaceResult plain = intersurface_map(a, b, {}, options);
   EXPECT_EQ(plain.distortion_a_to_b.symmetric_dirichlet, plain.composition_a_to_b.symmetric_dirichlet);
   EXPECT_LT(plain.seconds_optimize, 0.01);
   options.optimize_rounds = 2;
+  options.correspondence_weight = 0.25;
   const IntersurfaceResult optimized = intersurface_map(a, b, {}, options);
   EXPECT_EQ(optimized.composition_a_to_b.symmetric_dirichlet, plain.distortion_a_to_b.symmetric_dirichlet);
   EXPECT_LT(optimized.distortion_a_to_b.symmetric_dirichlet, plain.distortion_a_to_b.symmetric_dirichlet);

@@ -7,11 +7,13 @@
 // consistent spherical parameterization (thesis 3.2) with the feature pairs
 // as features, so each pair lands on one point of the sphere; a vertex of A
 // is mapped onto B by locating its sphere point in B's map. Stretch-minimizing
-// maps of two different shapes do not agree between the features, so the
-// composition is then optimized directly for symmetric distortion (in the
-// spirit of Schreiner et al. 2004): each mesh's sphere points move so that
-// its triangles map onto the other surface as isometrically as possible,
-// never leaving the kernel of their spherical stars. The result stays
+// maps of two different shapes do not agree between the features, so A's map
+// is computed again with a second energy, the symmetric distortion of its
+// triangles against their images on B, optimized coarse to fine during the
+// refinement as Schreiner et al. 2004 do; then the composition is optimized
+// directly for symmetric distortion in both directions: each mesh's sphere
+// points move so that its triangles map onto the other surface as
+// isometrically as possible, never leaving the kernel of their spherical stars. The result stays
 // continuous and bijective as a map between the surfaces (both spherical
 // maps remain embeddings); what is sampled here is its value at the vertices.
 //
@@ -58,6 +60,10 @@ struct IntersurfaceOptions {
   // at most `sweeps` sweeps over the vertices. 0 keeps the plain composition.
   int optimize_rounds = 2;
   int optimize_sweeps = 20;
+  // Genus 0: before that, A's spherical map is computed again with this
+  // weight on its consistency with B's map (0: not at all). With neither,
+  // the result is the plain composition.
+  double correspondence_weight = 0.25;
 };
 
 // Distortion of the map sampled at the vertices: each triangle of the source
@@ -87,7 +93,8 @@ struct IntersurfaceResult {
   int genus = 0;
   // Genus 0: the two spherical maps after optimization (their stretch
   // efficiency, flipped chordal triangles, Steiner vertices inserted on each
-  // mesh) and the distortion of the plain composition before it.
+  // mesh) and the distortion of the plain composition of the consistent
+  // parameterization's two maps.
   double efficiency_a = 0, efficiency_b = 0;
   int sphere_flipped = 0;
   int steiner_a = 0, steiner_b = 0;

@@ -13,7 +13,9 @@
 #include "consistent_maps/remesh.h"
 #include "consistent_maps/sphere_locator.h"
 #include "consistent_maps/spherical_parameterization.h"
+#include "consistent/parameterize_with_reference.h"
 #include "paths/mesh_holes.h"
+#include "sphere/consistent_constrained_parameterization.h"
 
 namespace cmaps {
 namespace {
@@ -127,6 +129,12 @@ ParameterizedSurface parameterized_surface(const TriangleMesh& mesh, const Const
 
 ConstrainedResult parameterize_to_locations(const ConsistentMember& member, const std::vector<Vec3>& locations,
                                             const SphereOptions& options, const ProgressCallback& progress) {
+  return parameterize_to_locations(member, locations, options, progress, ReferenceMap{});
+}
+
+ConstrainedResult parameterize_to_locations(const ConsistentMember& member, const std::vector<Vec3>& locations,
+                                            const SphereOptions& options, const ProgressCallback& progress,
+                                            const ReferenceMap& reference) {
   if (locations.size() != member.features.size())
     throw InvalidInput("got " + std::to_string(locations.size()) + " locations for " +
                        std::to_string(member.features.size()) + " features");
@@ -134,7 +142,7 @@ ConstrainedResult parameterize_to_locations(const ConsistentMember& member, cons
   std::vector<Vec3> targets;
   for (int k : p.names) targets.push_back(locations[k]);
   // Every member of a set faces outwards, so that their maps turn alike.
-  return constrained_spherical_parameterization(outward(member.mesh), p.vertices, targets, options, progress);
+  return constrained_spherical_parameterization(outward(member.mesh), p.vertices, targets, options, progress, reference);
 }
 
 ConsistentResult consistent_spherical_parameterization(const std::vector<ConsistentMember>& members,

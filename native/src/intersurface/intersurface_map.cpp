@@ -16,6 +16,7 @@
 #include "consistent_maps/errors.h"
 #include "consistent_maps/mesh_check.h"
 #include "consistent_maps/sphere_locator.h"
+#include "consistent/parameterize_with_reference.h"
 #include "consistent_maps/stretch_metric.h"
 #include "intersurface/map_optimizer.h"
 #include "intersurface/symmetric_dirichlet.h"
@@ -320,12 +321,9 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
   consistent.sphere = options.sphere;
   consistent.grid = options.grid;
   const ConsistentResult maps = consistent_spherical_parameterization(
-      members, consistent, slice(progress, features.size() < 3 ? 0.2 : 0, 0.8));
+      members, consistent, slice(progress, features.size() < 3 ? 0.2 : 0, 0.7));
   result.seconds_parameterize = seconds_since(stage);
   ConstrainedResult map_a = maps.members[0], map_b = maps.members[1];  // the optimization moves their sphere points
-  result.steiner_a = int(map_a.steiner.size());
-  result.steiner_b = int(map_b.steiner.size());
-
   std::vector<std::pair<int, int>> a_to_b, b_to_a;
   for (const FeaturePair& f : result.features) a_to_b.push_back({f.a, f.b}), b_to_a.push_back({f.b, f.a});
   const int threads = options.sphere.threads;
@@ -337,13 +335,23 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
     forward = measure_intersurface_map(a, b, result.a_to_b);
     backward = measure_intersurface_map(b, a, result.b_to_a);
   };
+  const bool refit = options.correspondence_weight > 0;
+  const bool optimize = options.optimize_rounds > 0 && options.optimize_sweeps > 0;
 
   stage = Clock::now();
-  if (options.optimize_rounds > 0 && options.optimize_sweeps > 0) {
+  if (refit || optimize) {
     compose();
     measure(result.composition_a_to_b, result.composition_b_to_a);
-    optimize_composition(a, map_a, b, map_b, result.features, options, slice(progress, 0.8, 0.95));
   }
+  if (refit) {
+    // A's map again, now also consistent with B's (coarse to fine).
+    const ParameterizedSurface pb = parameterized_surface(b, map_b);
+    map_a = parameterize_to_locations(members[0], maps.feature_locations, options.sphere, slice(progress, 0.7, 0.8),
+                                      ReferenceMap{&pb.surface, &pb.sphere, options.correspondence_weight});
+  }
+  if (optimize) optimize_composition(a, map_a, b, map_b, result.features, options, slice(progress, 0.8, 0.95));
+  result.steiner_a = int(map_a.steiner.size());
+  result.steiner_b = int(map_b.steiner.size());
   result.seconds_optimize = seconds_since(stage);
   for (const auto& [mesh, map, efficiency] :
        {std::tuple<const TriangleMesh&, const ConstrainedResult&, double&>{a, map_a, result.efficiency_a},
@@ -363,7 +371,7 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
 
   stage = Clock::now();
   measure(result.distortion_a_to_b, result.distortion_b_to_a);
-  if (options.optimize_rounds <= 0 || options.optimize_sweeps <= 0)
+  if (!refit && !optimize)
     result.composition_a_to_b = result.distortion_a_to_b, result.composition_b_to_a = result.distortion_b_to_a;
   result.seconds_measure = seconds_since(stage);
   if (progress && !progress(1, "done")) throw Cancelled();

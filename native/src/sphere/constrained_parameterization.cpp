@@ -13,6 +13,7 @@
 #include "paths/mesh_holes.h"
 #include "paths/path_network.h"
 #include "paths/spherical_triangulation.h"
+#include "sphere/consistent_constrained_parameterization.h"
 #include "sphere/sphere_refinement.h"
 
 namespace cmaps {
@@ -95,6 +96,14 @@ ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mes
                                                          const std::vector<Vec3>& given_targets,
                                                          const SphereOptions& options,
                                                          const ProgressCallback& progress) {
+  return constrained_spherical_parameterization(mesh, features, given_targets, options, progress, ReferenceMap{});
+}
+
+ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mesh, const std::vector<int>& features,
+                                                         const std::vector<Vec3>& given_targets,
+                                                         const SphereOptions& options,
+                                                         const ProgressCallback& progress,
+                                                         const ReferenceMap& reference) {
   // Holes (thesis 3.5) are closed by a temporary centre vertex each; each
   // hole must be ringed by at least 3 features.
   ClosedMesh closed = close_holes(mesh);
@@ -271,8 +280,9 @@ ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mes
     for (int f = 0; f < faces; ++f) extras.stretch_free_faces[f] = is_fan(f);
     extras.arcs.index(static_cast<int>(refined.vertices.size()));
   }
-  refine_on_sphere(pm, {&refined.vertices}, fixed, options, sphere,
-                   ProgressSlice(progress, "refine", begin + 0.2, 1.0), holes > 0 ? &extras : nullptr);
+  extras.reference = reference;
+  refine_on_sphere(pm, {&refined.vertices}, fixed, options, sphere, ProgressSlice(progress, "refine", begin + 0.2, 1.0),
+                   holes > 0 || reference.surface ? &extras : nullptr);
   result.seconds_optimize = seconds_since(optimize_start);
 
   // Output over the input vertices then the Steiner vertices: the centres

@@ -1,6 +1,7 @@
 #include "sphere/sphere_refinement.h"
 
 #include <cmath>
+#include <memory>
 
 #include "consistent_maps/errors.h"
 #include "sphere/spherical_kernel.h"
@@ -150,6 +151,11 @@ void refine_on_sphere(const ProgressiveMesh& pm, const std::vector<const std::ve
   optimizer.set_fixed(fixed);
   const ArcChains* arcs = extras && !extras->arcs.chain_of.empty() ? &extras->arcs : nullptr;
   optimizer.set_arcs(arcs);
+  std::unique_ptr<CorrespondenceTerm> term;
+  if (extras && extras->reference.surface) {
+    term = std::make_unique<CorrespondenceTerm>(*geometries[0], 4 * M_PI, extras->reference);  // normalized area
+    optimizer.set_correspondence(term.get());
+  }
   optimizer.optimize_all(schedule.pass_sweeps, schedule.tolerance);
 
   double next_pass = refinement.active_vertex_count() * schedule.growth;

@@ -9,6 +9,7 @@
 #include "consistent_maps/progress.h"
 #include "consistent_maps/progressive_mesh.h"
 #include "consistent_maps/spherical_parameterization.h"
+#include "sphere/correspondence_term.h"
 
 namespace cmaps {
 
@@ -47,6 +48,7 @@ struct ArcChains {
 struct RefineExtras {
   std::vector<char> stretch_free_faces;  // per face: weights are the regularizer alone
   ArcChains arcs;
+  ReferenceMap reference;  // with a surface: consistency with its map joins the energy (geometries[0] is measured)
 };
 
 }  // namespace cmaps

@@ -25,7 +25,27 @@ double VertexOptimizer::star_energy(int v, const Vec3& p, Vec3* gradient) const 
     energy += corner_energy(p, sphere_[t[k1]], sphere_[t[k2]], {w[k], w[k1], w[k2]}, gradient);
     if (!std::isfinite(energy)) return energy;
   }
+  if (term_) {
+    energy += term_->star_energy(mesh_, v, p, sphere_);
+    if (gradient) *gradient += correspondence_gradient(v, p);
+  }
   return energy;
+}
+
+Vec3 VertexOptimizer::correspondence_gradient(int v, const Vec3& p) const {
+  double shortest = std::numeric_limits<double>::infinity();
+  for (int f : mesh_.faces_of(v))
+    for (int u : mesh_.triangles()[f])
+      if (u != v) shortest = std::min(shortest, (sphere_[u] - p).norm());
+  const double h = 1e-4 * shortest;
+  const Vec3 t[2] = {p.unitOrthogonal(), p.cross(p.unitOrthogonal())};
+  Vec3 g = Vec3::Zero();
+  for (const Vec3& d : t) {
+    const double up = term_->star_energy(mesh_, v, (p + h * d).normalized(), sphere_);
+    const double down = term_->star_energy(mesh_, v, (p - h * d).normalized(), sphere_);
+    g += (up - down) / (2 * h) * d;
+  }
+  return g;
 }
 
 double VertexOptimizer::total_energy() const {
@@ -82,6 +102,7 @@ double VertexOptimizer::optimize_on_arc(int v, int iterations) {
     if (!accepted) break;
   }
   sphere_[v] = point(t);
+  if (term_) term_->moved(v, sphere_[v]);
   return (sphere_[v] - start).norm() / std::max(1e-300, std::sin(room));
 }
 
@@ -159,10 +180,12 @@ double VertexOptimizer::optimize_vertex(int v, int iterations) {
     sphere_[v] = p;
   }
   sphere_[v] = p;
+  if (term_) term_->moved(v, p);
   return (p - start).norm() / scale;
 }
 
 void VertexOptimizer::optimize_all(int max_sweeps, double tolerance) {
+  if (term_) term_->refresh_all(sphere_, threads_);
   const VertexColouring colouring = colour_vertices(
       static_cast<int>(sphere_.size()), mesh_.triangles(), [&](size_t f) { return mesh_.face_active(f); },
       [&](int v) { return mesh_.vertex_active(v); });

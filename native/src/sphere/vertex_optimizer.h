@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "consistent_maps/progressive_mesh.h"
+#include "sphere/correspondence_term.h"
 #include "sphere/sphere_refinement.h"
 #include "sphere/stretch_energy.h"
 
@@ -41,15 +42,21 @@ class VertexOptimizer {
   // Vertices restricted to great-circle arcs (may be null); must outlive the optimizer.
   void set_arcs(const ArcChains* arcs) { arcs_ = arcs; }
 
+  // A consistency term added to the stretch energy (may be null; its
+  // gradient is taken by central differences); must outlive the optimizer.
+  void set_correspondence(CorrespondenceTerm* term) { term_ = term; }
+
  private:
   const MeshRefinement& mesh_;
   const std::vector<FaceWeights>& weights_;
   std::vector<Vec3>& sphere_;
   std::vector<char> fixed_;
   const ArcChains* arcs_ = nullptr;
+  CorrespondenceTerm* term_ = nullptr;
   int threads_;
 
   double optimize_on_arc(int v, int iterations);
+  Vec3 correspondence_gradient(int v, const Vec3& p) const;
 };
 
 }  // namespace cmaps
