@@ -113,15 +113,16 @@ def semantic_rows(name, files, feature_file, rows, member_rows, spread_rows):
         print(member_rows[-1], flush=True)
     # Each member that has every feature seeds step 1 in turn (a member lacking features cannot).
     seeds = [m for m in range(len(meshes)) if (features[m] >= 0).all()]
-    finals = []
-    for first in seeds:
-        r, _ = run_set(name, meshes, features, first)
-        finals.append([stats["efficiency"] for _, stats, _ in r["members"]])
-    finals = np.array(finals)
-    spread_rows.append(f"| {name} | {len(seeds)} (members {', '.join(map(str, seeds))}) | "
-                       f"{(finals.max(axis=0) - finals.min(axis=0)).max():.3f} | "
-                       f"{finals.mean(axis=1).min():.3f} – {finals.mean(axis=1).max():.3f} |")
+    spread_rows.append(spread_row(name, meshes, features, seeds, f"{len(seeds)} (members {', '.join(map(str, seeds))})"))
     print(spread_rows[-1], flush=True)
+
+
+def spread_row(name, meshes, features, seeds, runs):
+    """The largest change of a member's final efficiency, and the range of the mean, over seeding members."""
+    finals = np.array([[stats["efficiency"] for _, stats, _ in run_set(name, meshes, features, first)[0]["members"]]
+                       for first in seeds])
+    return (f"| {name} | {runs} | {(finals.max(axis=0) - finals.min(axis=0)).max():.3f} | "
+            f"{finals.mean(axis=1).min():.3f} – {finals.mean(axis=1).max():.3f} |")
 
 
 def main() -> int:
@@ -137,14 +138,8 @@ def main() -> int:
         rows.append(efficiency_rows(name, meshes, result, seconds,
                                     f"mean {np.mean(errors):.2%}, worst {np.max(errors):.2%}"))
         print(rows[-1], flush=True)
-        finals = []
-        for first in range(min(len(meshes), 5)):
-            r, _ = run_set(name, meshes, features, first)
-            finals.append([stats["efficiency"] for _, stats, _ in r["members"]])
-        finals = np.array(finals)
-        spread_rows.append(f"| {name} | {finals.shape[0]} | "
-                           f"{(finals.max(axis=0) - finals.min(axis=0)).max():.3f} | "
-                           f"{finals.mean(axis=1).min():.3f} – {finals.mean(axis=1).max():.3f} |")
+        seeds = range(min(len(meshes), 5))
+        spread_rows.append(spread_row(name, meshes, features, seeds, str(len(seeds))))
         print(spread_rows[-1], flush=True)
 
     # cat-lion: real landmarks, approximate dense ground truth.
