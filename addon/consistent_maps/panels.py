@@ -118,21 +118,23 @@ class CM_PT_features(_Panel, bpy.types.Panel):
 
 
 def _draw_missing(layout, obj, objects):
-    """Names other objects of the set have and obj lacks or has not placed, with a Place button."""
+    """Features of obj still to place (empty groups) and features of other objects of the set obj does not
+    have (optional: its map is left free there), each with a Place button in Edit Mode."""
     names = []
     for other in objects:
         names += [n for n in features.features(other) if n not in names]
-    placed = features.features(obj)
-    missing = [n for n in names if n not in placed]
-    if not missing:
-        return
-    box = layout.box()
-    box.label(text="To place on this object:")
-    for name in missing:
-        row = box.row()
-        row.label(text=name, icon='ERROR')
-        if obj.mode == 'EDIT':
-            row.operator("consistent_maps.add_feature", text="Place at Selected").name = name
+    own = features.memberships(obj)
+    for title, listed in (("To place on this object:", [n for n, verts in own.items() if not verts]),
+                          ("Optional here (left free without):", [n for n in names if n not in own])):
+        if not listed:
+            continue
+        box = layout.box()
+        box.label(text=title)
+        for name in listed:
+            row = box.row()
+            row.label(text=name, icon='ERROR' if title.startswith("To place") else 'DOT')
+            if obj.mode == 'EDIT':
+                row.operator("consistent_maps.add_feature", text="Place at Selected").name = name
 
 
 class CM_PT_compute(_Panel, bpy.types.Panel):
