@@ -8,6 +8,7 @@
     api.morph(head, other_head, align='features')   # shape key "→ Other" on head
     api.animate_morph(head, 1, 24)
     api.transfer(other_head, head, uv_maps=["UVMap"])
+    api.bake_normal_map(other_head, head, 2048)      # other's normals in head's UV layout
 
 compute() runs synchronously; the Compute operator runs the same three steps,
 prepare (main thread), run (worker thread) and apply (main thread), without
@@ -300,3 +301,17 @@ def bake_texture(source, target, image_size=1024, margin=16):
     UV map. Returns the image (not saved: pack or save it)."""
     from . import bake  # Blender-only
     return bake.bake(source, target, image_size, margin)
+
+
+def bake_normal_map(source, target, image_size=1024, margin=16, align='features'):
+    """Normal-map transfer: a new image (image_size², Non-Color) holding source's shading normals (smooth,
+    flat or custom) as a tangent-space normal map in target's active UV layout, through the common map, so
+    that target rendered with it (Image Texture at that UV map, Non-Color, into a Normal Map node in
+    tangent space) shows source's normals; Blender's tangent space (MikkTSpace) is used, as Cycles bakes
+    it. align: 'features' turns source's normals by the least-squares rotation taking its features onto
+    target's (needs 3 shared features), 'none' takes them as they are (object space). Target and source
+    are not modified. Raises MapError (nothing created) when they have no common map, target has no UV
+    map or align cannot be done. Returns the image (not saved: pack or save it)."""
+    from . import bake  # Blender-only
+    return bake.bake_normals(source, target, image_size, margin, align)
+

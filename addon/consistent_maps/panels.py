@@ -224,9 +224,12 @@ class CM_PT_transfer(_Panel, bpy.types.Panel):
         column = layout.column(align=True)
         for kind, label, _ in operators_transfer.KINDS:
             column.operator("consistent_maps.transfer", text=label).kind = kind
+        settings = context.scene.consistent_maps
+        layout.prop(settings, "bake_size")
+        layout.operator("consistent_maps.bake_texture", icon='TEXTURE')
         row = layout.row(align=True)
-        row.prop(context.scene.consistent_maps, "bake_size")
-        row.operator("consistent_maps.bake_texture", icon='TEXTURE')
+        row.prop(settings, "normal_align", text="")
+        row.operator("consistent_maps.bake_normal_map", icon='NORMALS_FACE')
 
 
 CLASSES = (CM_UL_members, CM_UL_features, CM_PT_main, CM_PT_features, CM_PT_compute, CM_PT_results, CM_PT_morph,

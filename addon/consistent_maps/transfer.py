@@ -21,7 +21,8 @@ def _read(collection, field, width):
     return values.reshape(-1, width) if width > 1 else values
 
 
-def _corner_normals(mesh):
+def corner_normals(mesh):
+    """(loops, 3) the shading normal of every face corner (smooth, flat or custom), object space."""
     if bpy.app.version >= (4, 1, 0):
         return _read(mesh.corner_normals, "vector", 3)
     mesh.calc_normals_split()
@@ -131,7 +132,7 @@ def transfer(source, target, uv_maps=(), color_attributes=(), normals=False, ver
         writes.append((lambda name=name, weights=weights: _write_weights(target, name, weights),
                        f"vertex group {name}"))
     if normals:
-        corner = values.at('CORNER', _corner_normals(smesh))
+        corner = values.at('CORNER', corner_normals(smesh))
         corner /= np.maximum(np.linalg.norm(corner, axis=1, keepdims=True), 1e-12)
         writes.append((lambda corner=corner: _write_normals(tmesh, corner), "normals"))
     for write, _ in writes:
