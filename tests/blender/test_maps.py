@@ -693,3 +693,74 @@ def test_bake_normal_map_operator_and_errors():
     b.data.vertices[0].co.x += 0.01
     refused("stale")
     assert snapshot(a)[:3] == before[0][:3], "the source keeps its result and data"
+
+
+def _shaded(obj, normal_map=None, uv_map="UVMap"):
+    """A grey Principled material, with the normal map image (tangent space of uv_map) when given."""
+    material = bpy.data.materials.new(f"{obj.name} grey")
+    material.use_nodes = True
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    principled = nodes["Principled BSDF"]
+    principled.inputs["Base Color"].default_value = (0.7, 0.7, 0.7, 1)
+    principled.inputs["Roughness"].default_value = 0.6
+    if normal_map is not None:
+        uv = nodes.new("ShaderNodeUVMap")
+        uv.uv_map = uv_map
+        texture = nodes.new("ShaderNodeTexImage")
+        texture.image = normal_map
+        node = nodes.new("ShaderNodeNormalMap")
+        node.uv_map = uv_map
+        links.new(uv.outputs["UV"], texture.inputs["Vector"])
+        links.new(texture.outputs["Color"], node.inputs["Color"])
+        links.new(node.outputs["Normal"], principled.inputs["Normal"])
+    obj.data.materials.clear()
+    obj.data.materials.append(material)
+
+
+def test_render_normal_map_transfer():
+    """Thesis Fig. 4.4 in small: the bumps of a fine ball (left) carried as a baked normal map onto a coarse
+    ellipsoid of 382 vertices (right; the ellipsoid alone in the middle). Cycles renders
+    out/blender/normal_map-<version>.png; the right one must show the bumps the middle one lacks."""
+    source = _bumpy_ball("Bumpy", location=(-2.8, 0, 0))  # one object per third of the image
+    target = load(BALL, "Ellipsoid", location=(2.8, 0, 0))
+    target.data.transform(np.diag([1.3, 1.3, 1.0, 1.0]))
+    _smooth(target)
+    for obj in (source, target):
+        _axis_features(obj)
+    api.compute([source, target], effort=0)
+    _unit_uv(target.data)
+    image = api.bake_normal_map(source, target, 512, align='none')
+    plain = bpy.data.objects.new("Plain", target.data.copy())
+    bpy.context.scene.collection.objects.link(plain)
+    _shaded(source)
+    _shaded(plain)
+    _shaded(target, image)
+    scene = bpy.context.scene
+    camera = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
+    scene.collection.objects.link(camera)
+    camera.data.type, camera.data.ortho_scale = 'ORTHO', 8.4
+    camera.location, camera.rotation_euler = (0, -8, 0), (np.pi / 2, 0, 0)
+    scene.camera = camera
+    sun = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", 'SUN'))
+    sun.data.energy = 2.5
+    sun.rotation_euler = (np.radians(25), 0, 0)  # from above, grazing the front: no shadow on a neighbour
+    scene.collection.objects.link(sun)
+    scene.render.engine = 'CYCLES'
+    scene.cycles.samples, scene.cycles.use_denoising = 16, False
+    scene.render.resolution_x, scene.render.resolution_y = 3 * CELL, CELL
+    scene.render.image_settings.file_format = 'PNG'
+    OUT.mkdir(parents=True, exist_ok=True)
+    path = OUT / f"normal_map-{VERSION}.png"
+    scene.render.filepath = str(path)
+    bpy.ops.render.render(write_still=True)
+    rendered = bpy.data.images.load(str(path))
+    pixels = np.empty(3 * CELL * CELL * 4, dtype=np.float32)
+    rendered.pixels.foreach_get(pixels)
+    grey = pixels.reshape(CELL, 3 * CELL, 4)[..., :3].mean(axis=-1)
+    blocks = grey.reshape(CELL // 8, 8, 3 * CELL // 8, 8).mean(axis=(1, 3))  # 8x8 averages: no sampling noise
+    middle, right = blocks[:, CELL // 8:2 * CELL // 8], blocks[:, 2 * CELL // 8:]
+    inside = (middle > 0.1) & (right > 0.1)  # the lit ellipsoid, the same silhouette in both
+    change = np.abs(right - middle)[inside].mean()
+    print(f"  rendered {path.name}: the baked normal map changes the ellipsoid's brightness by {change:.3f} on "
+          f"average over {inside.sum()} blocks of 8x8 pixels")
+    assert inside.sum() > 50 and change > 0.015, (inside.sum(), change)  # without the map: 0.004 (noise)
