@@ -195,6 +195,41 @@ std::vector<SurfacePoint> map_through_sphere(const std::vector<Vec3>& source_sph
   return points;
 }
 
+// Sphere directions of a point next to every corner of every input triangle
+// (3 t + k), moved by kCornerNudge towards the other two corners inside a
+// refined triangle of that input triangle incident to the corner (the map is
+// linear there); without one (zero-area input triangles), between the input
+// corners' own directions.
+constexpr double kCornerNudge = 1e-3;
+
+std::vector<Vec3> corner_directions(const TriangleMesh& mesh, const ConstrainedResult& map) {
+  const ParameterizedSurface surface = parameterized_surface(mesh, map);
+  const std::vector<Vec3>& sphere = surface.sphere;
+  std::vector<Vec3> directions(3 * mesh.triangles.size());
+  std::vector<char> found(directions.size(), 0);
+  const auto nudged = [](const Vec3& at, const Vec3& b, const Vec3& c) {
+    return Vec3((1 - 2 * kCornerNudge) * at + kCornerNudge * (b + c)).normalized();
+  };
+  for (std::size_t r = 0; r < map.triangles.size(); ++r) {
+    const int t = map.input_triangle[r];
+    const Triangle& refined = map.triangles[r];
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t slot = 3 * std::size_t(t) + std::size_t(k);
+        if (found[slot] || refined[j] != mesh.triangles[t][k]) continue;
+        directions[slot] = nudged(sphere[refined[j]], sphere[refined[(j + 1) % 3]], sphere[refined[(j + 2) % 3]]);
+        found[slot] = 1;
+      }
+  }
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k)
+      if (!found[3 * t + k]) {
+        const Triangle& c = mesh.triangles[t];
+        directions[3 * t + k] = nudged(map.sphere[c[k]], map.sphere[c[(k + 1) % 3]], map.sphere[c[(k + 2) % 3]]);
+      }
+  return directions;
+}
+
 double total_area(const TriangleMesh& mesh) {
   double area = 0;
   for (const Triangle& t : mesh.triangles)
@@ -323,6 +358,7 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
   const int threads = options.sphere.threads;
   result.a_to_b = map_through_sphere(map_a.sphere, b, map_b, a_to_b, threads);
   result.b_to_a = map_through_sphere(map_b.sphere, a, map_a, b_to_a, threads);
+  if (options.corner_images) result.a_corners_to_b = map_through_sphere(corner_directions(a, map_a), b, map_b, {}, threads);
   result.a_on_b = surface_positions(b, result.a_to_b);
   result.b_on_a = surface_positions(a, result.b_to_a);
   result.seconds_locate = seconds_since(stage);
