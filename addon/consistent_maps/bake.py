@@ -155,8 +155,7 @@ def bake(source, target, size=1024, margin=16):
     layer_data = source.data.uv_layers[uv_map].data
     source_uv = np.empty(len(layer_data) * 2, dtype=np.float32)
     layer_data.foreach_get("uv", source_uv)
-    uv = mapping.at_corners(maps.corner_landing(source, target), meshdata.loop_triangles(source.data)[1],
-                            source_uv.reshape(-1, 2))
+    uv = maps.uvs_at_corners(source, target, maps.corner_landing(source, target), source_uv.reshape(-1, 2))
     result = bpy.data.images.new(f"{target.name} from {source.name}", size, size, alpha=False)
 
     def emit_source_image(nodes, links):

@@ -2,7 +2,9 @@
 
 Per-vertex layers are read at the source point each target vertex maps to; per-corner
 layers (UV maps, corner colours, custom normals, corner attributes) at the point of
-each target corner moved slightly into its own triangle, so seams stay seams. Every
+each target corner moved slightly into its own triangle, so seams stay seams; a UV map's
+coordinates of one target face are continued across the source's seams into one chart
+(so a face whose image straddles a seam does not span the whole texture). Every
 requested layer is checked and computed before the target is modified.
 """
 import bpy
@@ -80,6 +82,12 @@ class _Values:
         self._vertex = self._corner = None
         self._source_triangles = meshdata.loop_triangles(source.data)
 
+    def uvs(self, uv):
+        """Source's per-corner texture coordinates at the target's corners, each face in one chart."""
+        if self._corner is None:
+            self._corner = maps.corner_landing(self.source, self.target)
+        return maps.uvs_at_corners(self.source, self.target, self._corner, uv)
+
     def at(self, domain, values):
         if domain == 'POINT':
             if self._vertex is None:
@@ -111,7 +119,7 @@ def transfer(source, target, uv_maps=(), color_attributes=(), normals=False, ver
     smesh, tmesh = source.data, target.data
     writes = []  # (write function, name); applied only once everything is computed
     for name in uv_maps:
-        uv = values.at('CORNER', _read(smesh.uv_layers[name].data, "uv", 2))
+        uv = values.uvs(_read(smesh.uv_layers[name].data, "uv", 2))
         writes.append((lambda name=name, uv=uv: (tmesh.uv_layers.get(name) or tmesh.uv_layers.new(name=name))
                        .data.foreach_set("uv", uv.astype(np.float32).ravel()), f"UV map {name}"))
     for name in color_attributes:

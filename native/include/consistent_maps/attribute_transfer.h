@@ -61,12 +61,29 @@ std::vector<std::array<double, N>> interpolate_corner_values(const std::vector<s
                            [&](int t, int k) -> const std::array<double, N>& { return values[corner_index[t][k]]; });
 }
 
+// Texture coordinates (u, v) at points of a mesh with per-corner coordinates
+// (corner k of triangle t has uvs[triangle_uvs[t][k]]): values[i], computed
+// in the chart of point i's own triangle point_triangle[i], expressed in the
+// chart of the triangle of point reference[i] (e.g. the first corner of the
+// same target face), by composing, along the fewest triangles between the
+// two, the similarity of each seam crossed (the one taking the shared edge's
+// coordinates in one triangle onto those in the other; u + 1 across a
+// cylinder's seam). So the corners of a face whose image straddles a seam
+// get coordinates continuing across it instead of spanning the texture.
+// Points whose triangles are more than 64 triangles apart keep their values.
+std::vector<std::array<double, 2>> continue_across_seams(const std::vector<Triangle>& triangles,
+                                                         const std::vector<std::array<int, 3>>& triangle_uvs,
+                                                         const std::vector<std::array<double, 2>>& uvs,
+                                                         const std::vector<int>& point_triangle,
+                                                         std::vector<std::array<double, 2>> values,
+                                                         const std::vector<int>& reference);
+
 // The colours and texture coordinates of `source` carried over to `target`
 // through `map`, an inter-surface map of target (as A) onto source (as B):
 // colours per target vertex at its image; texture coordinates per target
-// corner from map.a_corners_to_b (computed with options.corner_images), the
-// coordinates of one target vertex shared between its corners where they
-// agree. Throws InvalidInput when the map or the attributes do not fit the meshes.
+// corner from map.a_corners_to_b (computed with options.corner_images), each
+// target triangle's in one chart (continue_across_seams), the coordinates of
+// one target vertex shared between its corners where they agree. Throws InvalidInput when the map or the attributes do not fit the meshes.
 ObjAttributes transfer_obj_attributes(const TriangleMesh& source, const ObjAttributes& source_attributes,
                                       const TriangleMesh& target, const IntersurfaceResult& map);
 

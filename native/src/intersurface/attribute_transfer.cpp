@@ -30,20 +30,21 @@ struct Transition {
 // those in the other, e.g. u + 1 for a cylinder's seam).
 class Charts {
  public:
-  Charts(const TriangleMesh& mesh, const std::vector<std::array<int, 3>>& triangle_uvs, const std::vector<Uv>& uvs)
-      : mesh_(mesh), triangle_uvs_(triangle_uvs), uvs_(uvs), neighbours_(mesh.triangles.size(), {-1, -1, -1}) {
+  Charts(const std::vector<Triangle>& triangles, const std::vector<std::array<int, 3>>& triangle_uvs,
+         const std::vector<Uv>& uvs)
+      : triangles_(triangles), triangle_uvs_(triangle_uvs), uvs_(uvs), neighbours_(triangles.size(), {-1, -1, -1}) {
     std::unordered_map<std::uint64_t, int> first;  // directed-less edge -> first triangle seen
     const auto key = [](int p, int q) {
       return (std::uint64_t(std::uint32_t(std::min(p, q))) << 32) | std::uint32_t(std::max(p, q));
     };
-    for (int t = 0; t < int(mesh.triangles.size()); ++t)
+    for (int t = 0; t < int(triangles.size()); ++t)
       for (int k = 0; k < 3; ++k) {
-        const auto [it, added] = first.emplace(key(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3]), t);
+        const auto [it, added] = first.emplace(key(triangles[t][k], triangles[t][(k + 1) % 3]), t);
         if (!added && it->second != t) {
           neighbours_[t][k] = it->second;
           const int other = it->second;
           for (int j = 0; j < 3; ++j)
-            if (neighbours_[other][j] < 0 && key(mesh.triangles[other][j], mesh.triangles[other][(j + 1) % 3]) ==
+            if (neighbours_[other][j] < 0 && key(triangles[other][j], triangles[other][(j + 1) % 3]) ==
                                                  it->first)
               neighbours_[other][j] = t;
         }
@@ -53,13 +54,13 @@ class Charts {
   // The coordinates of corner vertex v as seen from triangle t.
   Uv at(int t, int v) const {
     for (int k = 0; k < 3; ++k)
-      if (mesh_.triangles[t][k] == v) return uvs_[triangle_uvs_[t][k]];
+      if (triangles_[t][k] == v) return uvs_[triangle_uvs_[t][k]];
     return {0, 0};
   }
 
   // Coordinates in triangle `from`'s chart expressed in neighbour `to`'s chart.
   Transition across(int from, int to, int edge) const {
-    const int p = mesh_.triangles[from][edge], q = mesh_.triangles[from][(edge + 1) % 3];
+    const int p = triangles_[from][edge], q = triangles_[from][(edge + 1) % 3];
     const Uv fp = at(from, p), fq = at(from, q), tp = at(to, p), tq = at(to, q);
     if (fp == tp && fq == tq) return {};
     const Complex f0(fp[0], fp[1]), f1(fq[0], fq[1]), t0(tp[0], tp[1]), t1(tq[0], tq[1]);
@@ -99,27 +100,42 @@ class Charts {
   }
 
  private:
-  const TriangleMesh& mesh_;
+  const std::vector<Triangle>& triangles_;
   const std::vector<std::array<int, 3>>& triangle_uvs_;
   const std::vector<Uv>& uvs_;
   std::vector<std::array<int, 3>> neighbours_;  // per triangle, per edge k (corner k to k + 1); -1: none
 };
 
-// Per target corner (3 t + k) the texture coordinates at its image, all three
-// corners of a target triangle in the chart of the source triangle its first
-// corner lands in: an image straddling a seam of the source's coordinates
-// gets coordinates continuing across it (e.g. u > 1) instead of spanning the texture.
-std::vector<Uv> corner_uvs_in_one_chart(const TriangleMesh& source, const std::vector<std::array<int, 3>>& triangle_uvs,
-                                        const std::vector<Uv>& uvs, const std::vector<SurfacePoint>& corners) {
-  std::vector<Uv> result = interpolate_corner_values<2>(triangle_uvs, uvs, corners);
-  const Charts charts(source, triangle_uvs, uvs);
-  for (std::size_t t = 0; 3 * t < corners.size(); ++t)
-    for (int k = 1; k < 3; ++k)
-      result[3 * t + k] = charts.between(corners[3 * t + k].triangle, corners[3 * t].triangle).apply(result[3 * t + k]);
-  return result;
-}
-
 }  // namespace
+
+std::vector<Uv> continue_across_seams(const std::vector<Triangle>& triangles,
+                                      const std::vector<std::array<int, 3>>& triangle_uvs, const std::vector<Uv>& uvs,
+                                      const std::vector<int>& point_triangle, std::vector<Uv> values,
+                                      const std::vector<int>& reference) {
+  if (triangle_uvs.size() != triangles.size())
+    throw InvalidInput(std::to_string(triangle_uvs.size()) + " triangles of texture coordinates for " +
+                       std::to_string(triangles.size()) + " triangles");
+  if (point_triangle.size() != values.size() || reference.size() != values.size())
+    throw InvalidInput(std::to_string(values.size()) + " values for " + std::to_string(point_triangle.size()) +
+                       " points and " + std::to_string(reference.size()) + " references");
+  for (const auto& corners : triangle_uvs)
+    for (int c : corners)
+      if (c < 0 || std::size_t(c) >= uvs.size())
+        throw InvalidInput("texture coordinate " + std::to_string(c) + " out of range (" + std::to_string(uvs.size()) +
+                           ")");
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (point_triangle[i] < 0 || std::size_t(point_triangle[i]) >= triangles.size())
+      throw InvalidInput("point " + std::to_string(i) + " lies on triangle " + std::to_string(point_triangle[i]) +
+                         " of " + std::to_string(triangles.size()));
+    if (reference[i] < 0 || std::size_t(reference[i]) >= values.size())
+      throw InvalidInput("point " + std::to_string(i) + " refers to point " + std::to_string(reference[i]) + " of " +
+                         std::to_string(values.size()));
+  }
+  const Charts charts(triangles, triangle_uvs, uvs);
+  for (std::size_t i = 0; i < values.size(); ++i)
+    values[i] = charts.between(point_triangle[i], point_triangle[reference[i]]).apply(values[i]);
+  return values;
+}
 
 ObjAttributes transfer_obj_attributes(const TriangleMesh& source, const ObjAttributes& source_attributes,
                                       const TriangleMesh& target, const IntersurfaceResult& map) {
@@ -137,8 +153,13 @@ ObjAttributes transfer_obj_attributes(const TriangleMesh& source, const ObjAttri
   if (map.a_corners_to_b.size() != 3 * target.triangles.size())
     throw InvalidInput("the map has " + std::to_string(map.a_corners_to_b.size()) + " corner images for " +
                        std::to_string(3 * target.triangles.size()) + " target corners (compute it with corner_images)");
-  const std::vector<std::array<double, 2>> uvs =
-      corner_uvs_in_one_chart(source, source_attributes.triangle_uvs, source_attributes.uvs, map.a_corners_to_b);
+  std::vector<int> point_triangle(map.a_corners_to_b.size()), reference(map.a_corners_to_b.size());
+  for (std::size_t i = 0; i < point_triangle.size(); ++i)
+    point_triangle[i] = map.a_corners_to_b[i].triangle, reference[i] = int(i - i % 3);  // each triangle's first corner
+  const std::vector<std::array<double, 2>> uvs = continue_across_seams(
+      source.triangles, source_attributes.triangle_uvs, source_attributes.uvs, point_triangle,
+      interpolate_corner_values<2>(source_attributes.triangle_uvs, source_attributes.uvs, map.a_corners_to_b),
+      reference);
   std::map<std::tuple<int, double, double>, int> shared;  // (vertex, u, v) -> index: one vt where corners agree
   result.triangle_uvs.resize(target.triangles.size());
   for (std::size_t t = 0; t < target.triangles.size(); ++t)
