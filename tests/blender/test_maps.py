@@ -768,3 +768,29 @@ def test_render_normal_map_transfer():
     print(f"  rendered {path.name}: the baked normal map changes the ellipsoid's brightness by {change:.3f} on "
           f"average over {inside.sum()} blocks of 8x8 pixels")
     assert inside.sum() > 50 and change > 0.015, (inside.sum(), change)  # without the map: 0.004 (noise)
+
+
+def test_bake_normal_map_refuses_ngons_in_the_target():
+    """Blender has no tangent space on faces of more than 4 corners: a clear message, nothing created; as a
+    source (without a normal map of its own) such a mesh is fine."""
+    ring = [(np.cos(a), np.sin(a)) for a in np.linspace(0, 2 * np.pi, 6, endpoint=False)]
+    faces = [tuple(range(5, -1, -1)), tuple(range(6, 12))] + [(i, (i + 1) % 6, (i + 1) % 6 + 6, i + 6)
+                                                             for i in range(6)]
+    mesh = bpy.data.meshes.new("Prism")
+    mesh.from_pydata([(x, y, z) for z in (-1, 1) for x, y in ring], [], faces)
+    prism = bpy.data.objects.new("Prism", mesh)
+    bpy.context.scene.collection.objects.link(prism)
+    ball = load(BALL, "Ball", location=(3, 0, 0))
+    with_features(prism, ("a", "b", "c"), (0, 3, 8))
+    with_features(ball, ("a", "b", "c"), (0, 100, 200))
+    api.compute([prism, ball], effort=0)
+    for obj in (prism, ball):
+        obj.data.uv_layers.new(name="UVMap")
+    images = len(bpy.data.images)
+    try:
+        api.bake_normal_map(ball, prism, 32)
+        raise AssertionError("n-gons have no tangent space")
+    except api.MapError as e:
+        assert "'Prism' has faces with more than 4 corners" in str(e) and "Triangulate" in str(e), str(e)
+    assert len(bpy.data.images) == images
+    assert api.bake_normal_map(prism, ball, 32).size[:] == (32, 32)
