@@ -60,17 +60,23 @@ class CM_PT_main(_Panel, bpy.types.Panel):
         column.operator("consistent_maps.move_member", text="", icon='TRIA_UP').direction = 'UP'
         column.operator("consistent_maps.move_member", text="", icon='TRIA_DOWN').direction = 'DOWN'
         if 0 <= settings.active_member < len(settings.members) and settings.members[settings.active_member].object:
-            _draw_status(self.layout.box(), settings.members[settings.active_member].object)
+            _draw_status(self.layout.box(), settings.members[settings.active_member].object,
+                         set_objects(context.scene))
         _draw_problems(self.layout, set_objects(context.scene))
 
 
-def _draw_status(layout, obj):
+def _draw_status(layout, obj, objects):
     s = status.of(obj)
     column = layout.column(align=True)
     column.label(text=obj.name, icon='OBJECT_DATA')
     column.label(text=f"{s.triangles} triangles, genus {s.genus}")
     column.label(text="Manifold" if s.manifold else "Not manifold", icon='CHECKMARK' if s.manifold else 'ERROR')
     column.label(text=f"{len(s.placed)} features placed")
+    names = features.shared_names(objects) if len(objects) > 1 else []
+    lacking = [name for name in names if name not in s.placed]
+    if lacking:  # allowed: the map is left free there
+        column.label(text=f"{len(names) - len(lacking)} of the set's {len(names)} (without {', '.join(lacking[:3])}"
+                          f"{'...' if len(lacking) > 3 else ''})", icon='INFO')
     if s.unplaced or s.ambiguous:
         column.label(text=f"{len(s.unplaced)} to place, {len(s.ambiguous)} invalid", icon='ERROR')
     column.label(text=RESULT_TEXT[s.result].capitalize(), icon=RESULT_ICONS[s.result])

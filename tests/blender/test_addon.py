@@ -369,6 +369,41 @@ def test_missing_features_what_is_still_required():
     assert [snapshot(obj)[:3] for obj in objects] == [s[:3] for s in before], "no results, nothing stored"
 
 
+class _Layout:
+    """Records the labels a panel's draw code makes (panels cannot draw in background mode)."""
+
+    def __init__(self, labels=None):
+        self.labels = [] if labels is None else labels
+
+    def label(self, text="", **_):
+        self.labels.append(text)
+
+    def operator(self, *_args, **_):
+        return type("Properties", (), {})()
+
+    def prop(self, *_args, **_):
+        pass
+
+    def column(self, **_):
+        return _Layout(self.labels)
+
+    row = box = column
+
+
+def test_panels_describe_a_set_with_gaps():
+    a, b, c = _gapped_set()
+    make_set([a, b, c])
+    from consistent_maps import panels
+    layout = _Layout()
+    panels._draw_status(layout, b, [a, b, c])
+    panels._draw_missing(layout, b, [a, b, c])
+    assert "4 of the set's 5 (without F5)" in layout.labels, layout.labels
+    assert "Optional here (left free without):" in layout.labels and "F5" in layout.labels, layout.labels
+    layout = _Layout()
+    panels._draw_status(layout, a, [a, b, c])
+    assert not any("of the set's" in label for label in layout.labels), "A has all of them"
+
+
 def test_add_feature_operator_in_edit_mode():
     a = load(BALL, "A")
     make_set([a])
