@@ -22,9 +22,8 @@ def bounds(moving, fixed):
     return lambda points: (points - moving_centre) * scale + fixed_centre
 
 
-def similarity(moving, fixed):
-    """The least-squares similarity (rotation, uniform scale, translation) taking the points moving[i]
-    onto fixed[i] (Umeyama 1991); needs at least 3 points not all on a line for a unique rotation."""
+def _fit(moving, fixed):
+    """(scale, rotation, moving mean, fixed mean) of the least-squares similarity (Umeyama 1991)."""
     moving_mean, fixed_mean = moving.mean(axis=0), fixed.mean(axis=0)
     a, b = moving - moving_mean, fixed - fixed_mean
     u, s, vt = np.linalg.svd(b.T @ a)
@@ -32,4 +31,16 @@ def similarity(moving, fixed):
     rotation = u @ d @ vt
     spread = (a ** 2).sum()
     scale = float((s * np.diag(d)).sum() / spread) if spread > 0 else 1.0
+    return scale, rotation, moving_mean, fixed_mean
+
+
+def similarity(moving, fixed):
+    """The least-squares similarity (rotation, uniform scale, translation) taking the points moving[i]
+    onto fixed[i] (Umeyama 1991); needs at least 3 points not all on a line for a unique rotation."""
+    scale, rotation, moving_mean, fixed_mean = _fit(moving, fixed)
     return lambda points: scale * (points - moving_mean) @ rotation.T + fixed_mean
+
+
+def rotation(moving, fixed):
+    """(3, 3) the rotation of similarity(moving, fixed): how directions (normals) turn with it."""
+    return _fit(moving, fixed)[1]

@@ -8,12 +8,14 @@
     api.morph(head, other_head, align='features')   # shape key "→ Other" on head
     api.animate_morph(head, 1, 24)
     api.transfer(other_head, head, uv_maps=["UVMap"])
+    api.bake_normal_map(other_head, head, 2048)      # other's normals in head's UV layout
 
 compute() runs synchronously; the Compute operator runs the same three steps,
 prepare (main thread), run (worker thread) and apply (main thread), without
 blocking the interface. Objects are only modified once everything succeeded.
 """
 import os
+import re
 import uuid
 from dataclasses import dataclass, field
 
@@ -68,7 +70,7 @@ class Task:
     """One object's input, copied out so the computation needs no Blender data."""
     name: str
     arrays: meshdata.MeshArrays
-    feature_vertices: list  # vertex of each of the set's shared features, in Outcome.feature_names order
+    feature_vertices: list  # vertex of each of the set's features in Outcome.feature_names order, -1: lacks it
 
 
 @dataclass
@@ -118,7 +120,7 @@ def prepare(objects):
         if report["sphere_error"]:
             found.append(_mesh_problem(obj.name, report))
         placed = _features.features(obj)
-        tasks.append(Task(obj.name, arrays, [placed[name] for name in names]))
+        tasks.append(Task(obj.name, arrays, [placed.get(name, -1) for name in names]))
     found += _features.problems(objects)
     if found:
         raise ComputeError("\n".join(found))
@@ -134,7 +136,8 @@ def run(tasks, names, *, effort=1, seed=1, threads=None, progress=None):
     """The computation proper, touching no Blender data (safe in a worker thread); returns an Outcome.
 
     One object: its unconstrained map. Several: the consistent parameterization of the set, each
-    feature of `names` landing on one common sphere point on every member.
+    feature of `names` landing on one common sphere point on every member that has it (a member
+    lacking a feature, -1 in its Task, is left free there).
     progress(fraction of the whole run, text) returning False cancels: raises Cancelled.
     """
     threads = threads or os.cpu_count() or 1
@@ -153,8 +156,9 @@ def run(tasks, names, *, effort=1, seed=1, threads=None, progress=None):
         result = native.consistent_spherical_parameterization(
             [(t.arrays.vertices, t.arrays.triangles) for t in tasks], [t.feature_vertices for t in tasks],
             effort=effort, seed=seed, threads=threads, progress=forward)
-    except native.InvalidMeshError as e:
-        raise ComputeError(str(e)) from e
+    except native.InvalidMeshError as e:  # the library numbers the members: name them
+        raise ComputeError(re.sub(r"\bmesh (\d+)\b", lambda m: f"'{tasks[int(m.group(1))].name}'"
+                                  if int(m.group(1)) < len(tasks) else m.group(0), str(e))) from e
     members = [(sphere_, dict(stats, set_seconds=result["seconds"]),
                 (extras["refined_vertices"], extras["triangles"], extras["refined_sphere"]),
                 (extras["input_triangle"], extras["steiner_vertices"], extras["steiner_weights"]))
@@ -184,8 +188,10 @@ def apply(tasks, outcome):
 def compute(objects, *, effort=1, seed=1, threads=None, progress=None):
     """Maps every object onto the sphere and stores the results; returns {object name: stats}.
 
-    With several objects the maps are consistent: each feature (shared by all, at least 3) lands
-    on the same sphere point on every object; api.remesh() then builds consistent remeshes.
+    With several objects the maps are consistent: each feature lands on the same sphere point on every
+    object that has it. An object may lack features (no CM: group), but every feature must be on at least
+    two objects, every object needs at least 3 of them, and one object all (feature_problems() says what
+    is missing); api.remesh() then builds consistent remeshes.
 
     Raises ComputeError (invalid input, nothing modified) or Cancelled (progress returned False).
     """
@@ -295,3 +301,17 @@ def bake_texture(source, target, image_size=1024, margin=16):
     UV map. Returns the image (not saved: pack or save it)."""
     from . import bake  # Blender-only
     return bake.bake(source, target, image_size, margin)
+
+
+def bake_normal_map(source, target, image_size=1024, margin=16, align='features'):
+    """Normal-map transfer: a new image (image_size², Non-Color) holding source's shading normals (smooth,
+    flat or custom) as a tangent-space normal map in target's active UV layout, through the common map, so
+    that target rendered with it (Image Texture at that UV map, Non-Color, into a Normal Map node in
+    tangent space) shows source's normals; Blender's tangent space (MikkTSpace) is used, as Cycles bakes
+    it. align: 'features' turns source's normals by the least-squares rotation taking its features onto
+    target's (needs 3 shared features), 'none' takes them as they are (object space). Target and source
+    are not modified. Raises MapError (nothing created) when they have no common map, target has no UV
+    map or align cannot be done. Returns the image (not saved: pack or save it)."""
+    from . import bake  # Blender-only
+    return bake.bake_normals(source, target, image_size, margin, align)
+

@@ -168,35 +168,58 @@ def copy_names(source, targets):
 
 
 def shared_names(objects):
-    """Names placed on every object, in the order of the first object's groups."""
-    if not objects:
-        return []
+    """The set's features, in order of first appearance: for one object its placed features; for several,
+    the names placed on at least two of them (a name on one object corresponds to nothing). An object
+    may lack some of them: it is left free there (see problems() for what is still required)."""
     placed = [features(obj) for obj in objects]
-    return [name for name in placed[0] if all(name in p for p in placed[1:])]
+    names = []
+    for p in placed:
+        names += [name for name in p if name not in names]
+    if len(objects) > 1:
+        names = [name for name in names if sum(name in p for p in placed) >= 2]
+    return names
+
+
+def _listed(names, limit=4):
+    shown = ", ".join(f"'{n}'" for n in names[:limit])
+    return shown + (f" and {len(names) - limit} more" if len(names) > limit else "")
 
 
 def problems(objects):
-    """Plain-language problems with the features of a set, each telling what to fix."""
+    """Plain-language problems with the features of a set, each telling what to fix.
+
+    A set of several objects needs: every CM: group placed (one vertex; an empty group is a feature
+    still to place), every feature on at least two objects, at least MIN_SHARED of the set's features on
+    each object, and one object carrying all of them (it fixes where they lie on the common sphere).
+    An object may lack a feature (no group at all): its map is left free there.
+    """
     found = []
-    all_names = []
     for obj in objects:
         for name, verts in memberships(obj).items():
-            if name not in all_names:
-                all_names.append(name)
             if not verts:
-                found.append(f"Feature '{name}' is not placed on '{obj.name}': select a vertex in Edit Mode "
-                             f"and press Add Feature with this name")
+                found.append(f"Feature '{name}' is not placed on '{obj.name}': select a vertex in Edit Mode and "
+                             f"press Add Feature with this name, or delete the empty group from '{obj.name}' "
+                             f"to leave it out there")
             elif len(verts) > 1:
                 found.append(f"Feature '{name}' on '{obj.name}' has {len(verts)} vertices: a feature is one vertex, "
                              f"place it again with Add Feature")
-    if len(objects) > 1:
-        for name in all_names:
-            missing = [obj.name for obj in objects if name not in memberships(obj)]
-            if missing:
-                found.append(f"Feature '{name}' is missing on {', '.join(repr(m) for m in missing)}: "
-                             f"use Copy Names, then place it")
-        shared = shared_names(objects)
-        if len(shared) < MIN_SHARED:
-            found.append(f"The set shares {len(shared)} feature(s); at least {MIN_SHARED} are needed to put "
-                         f"{len(objects)} objects into correspondence")
+    if len(objects) < 2:
+        return found
+    placed = [features(obj) for obj in objects]
+    names = shared_names(objects)
+    for obj, p in zip(objects, placed):
+        alone = [name for name in p if name not in names]
+        if alone:
+            found.append(f"Feature(s) {_listed(alone)} placed only on '{obj.name}': a feature marks corresponding "
+                         f"points, so place it on at least one other object (Copy Names) or delete it")
+    for obj, p in zip(objects, placed):
+        own = [name for name in names if name in p]
+        if len(own) < MIN_SHARED:
+            found.append(f"'{obj.name}' has {len(own)} of the set's features ({_listed(own) or 'none'}); each "
+                         f"object needs at least {MIN_SHARED}: place more on it (Copy Names, then place them)")
+    if names and not any(all(name in p for name in names) for p in placed):
+        lacking = [[name for name in names if name not in p] for p in placed]
+        best = min(range(len(objects)), key=lambda i: len(lacking[i]))
+        found.append(f"No object has all {len(names)} features of the set; one must, to fix where they lie on the "
+                     f"common sphere: e.g. place {_listed(lacking[best])} on '{objects[best].name}'")
     return found

@@ -75,6 +75,16 @@ def at_corners(landing, triangle_corners, values):
     return at_vertices(landing, triangle_corners, values)
 
 
+def at_corners_in_face_charts(landing, triangles, triangle_corners, uv, reference):
+    """Texture coordinates uv (c, 2) of the member's corners interpolated at the landing points like
+    at_corners, then each point's re-expressed in the chart of point reference[i] (e.g. the first corner of
+    the same face), continued across the member's UV seams: a face whose image straddles a seam keeps
+    coordinates continuing across it (u > 1, say) instead of spanning the whole texture."""
+    values = at_corners(landing, triangle_corners, uv)
+    return native.continue_across_seams(triangles, triangle_corners, np.asarray(uv, dtype=np.float64),
+                                        landing.triangle, values, reference)
+
+
 def corner_directions(parameterization):
     """(M, 3, 3) sphere direction of each corner of each input triangle, moved by CORNER_NUDGE into a
     refined triangle of that input triangle incident to the corner's vertex (the map is linear there),

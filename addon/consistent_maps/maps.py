@@ -72,3 +72,23 @@ def corner_landing(source, target):
     first[corners.ravel()] = np.arange(corners.size)  # one loop triangle corner for every loop
     directions = mapping.corner_directions(target_map).reshape(-1, 3)[first]
     return mapping.land(parameterization(source), directions)
+
+
+def first_corners(mesh):
+    """Per corner (loop) of the mesh: the first corner of its face."""
+    starts = np.empty(len(mesh.polygons), dtype=np.int64)
+    mesh.polygons.foreach_get("loop_start", starts)
+    sizes = np.empty(len(mesh.polygons), dtype=np.int64)
+    mesh.polygons.foreach_get("loop_total", sizes)
+    loops = np.repeat(starts, sizes) + np.arange(sizes.sum()) - np.repeat(np.cumsum(sizes) - sizes, sizes)
+    first = np.empty(len(mesh.loops), dtype=np.int64)
+    first[loops] = np.repeat(starts, sizes)
+    return first
+
+
+def uvs_at_corners(source, target, landing, uv):
+    """Source's texture coordinates uv (one row per source corner) at target's corners (landing: where they
+    land, corner_landing(source, target)), each target face's corners in one chart of source's layout: a face
+    whose image straddles a seam of source's UV map gets coordinates continuing across it."""
+    triangles, corners = meshdata.loop_triangles(source.data)
+    return mapping.at_corners_in_face_charts(landing, triangles, corners, uv, first_corners(target.data))

@@ -14,18 +14,25 @@ def key_name(target):
     return f"{PREFIX}{target.name}"
 
 
+def shared_features(source, target):
+    """(source vertices, target vertices) of the placed features both objects have, for aligning them;
+    raises maps.MapError below 3."""
+    source_features, target_features = features.features(source), features.features(target)
+    shared = [name for name in source_features if name in target_features]
+    if len(shared) < 3:
+        raise maps.MapError(f"'{source.name}' and '{target.name}' share {len(shared)} placed feature(s); aligning "
+                            f"by features needs 3: place more or choose another alignment")
+    return [source_features[n] for n in shared], [target_features[n] for n in shared]
+
+
 def _transform(source, target, align, mapped):
     if align == 'none':
         return alignment.identity()
     if align == 'bounds':
         return alignment.bounds(mapped, maps.positions(source.data))
-    source_features, target_features = features.features(source), features.features(target)
-    shared = [name for name in source_features if name in target_features]
-    if len(shared) < 3:
-        raise maps.MapError(f"'{source.name}' and '{target.name}' share {len(shared)} placed feature(s); aligning "
-                            f"by features needs 3: place more or align by 'bounds'")
-    return alignment.similarity(maps.positions(target.data)[[target_features[n] for n in shared]],
-                                maps.positions(source.data)[[source_features[n] for n in shared]])
+    source_vertices, target_vertices = shared_features(source, target)
+    return alignment.similarity(maps.positions(target.data)[target_vertices],
+                                maps.positions(source.data)[source_vertices])
 
 
 def positions(source, target, align='features'):

@@ -47,3 +47,10 @@ def sphere_locator(sphere, triangles):
     """Point location on a parameterization given as a triangulated sphere (covering it once): the object's
     locate(directions, threads=) gives (triangles (q,), barycentric (q, 3)) of each direction."""
     return _native.SphereLocator(sphere, triangles)
+
+
+def continue_across_seams(triangles, triangle_uvs, uvs, point_triangles, values, reference):
+    """Texture coordinates values (q, 2) of points on triangles (m, 3) (corner k of triangle t has
+    uvs[triangle_uvs[t, k]]), point i's computed in its triangle point_triangles[i]'s chart, returned in the
+    chart of point reference[i]'s triangle: continued across the seams between them."""
+    return _native.continue_across_seams(triangles, triangle_uvs, uvs, point_triangles, values, reference)

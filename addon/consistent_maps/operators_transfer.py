@@ -1,4 +1,5 @@
-"""Copy layers of the chosen source onto the active object through their common map, or bake its texture."""
+"""Copy layers of the chosen source onto the active object through their common map, or bake its texture or
+normals."""
 import bpy
 from bpy.props import EnumProperty, StringProperty
 
@@ -68,4 +69,27 @@ class CM_OT_bake_texture(bpy.types.Operator):
         return {'FINISHED'}
 
 
-CLASSES = (CM_OT_transfer, CM_OT_bake_texture)
+class CM_OT_bake_normal_map(bpy.types.Operator):
+    """Bake the source's surface normals into a new tangent-space normal map in the active object's UV
+    layout, through the common map (Cycles); the objects are not modified"""
+    bl_idname = "consistent_maps.bake_normal_map"
+    bl_label = "Bake Normal Map"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    def execute(self, context):
+        settings = context.scene.consistent_maps
+        source, target = settings.transfer_source, context.active_object
+        if source is None or target is None:
+            self.report({'ERROR'}, "Choose the source, and make the object to bake for the active object")
+            return {'CANCELLED'}
+        try:
+            image = api.bake_normal_map(source, target, settings.bake_size, align=settings.normal_align)
+        except api.MapError as e:
+            self.report({'ERROR'}, str(e))
+            return {'CANCELLED'}
+        self.report({'INFO'}, f"Normal map '{image.name}' ({image.size[0]} px, tangent space of UV map "
+                              f"'{target.data.uv_layers.active.name}'): save or pack it to keep it")
+        return {'FINISHED'}
+
+
+CLASSES = (CM_OT_transfer, CM_OT_bake_texture, CM_OT_bake_normal_map)

@@ -60,17 +60,23 @@ class CM_PT_main(_Panel, bpy.types.Panel):
         column.operator("consistent_maps.move_member", text="", icon='TRIA_UP').direction = 'UP'
         column.operator("consistent_maps.move_member", text="", icon='TRIA_DOWN').direction = 'DOWN'
         if 0 <= settings.active_member < len(settings.members) and settings.members[settings.active_member].object:
-            _draw_status(self.layout.box(), settings.members[settings.active_member].object)
+            _draw_status(self.layout.box(), settings.members[settings.active_member].object,
+                         set_objects(context.scene))
         _draw_problems(self.layout, set_objects(context.scene))
 
 
-def _draw_status(layout, obj):
+def _draw_status(layout, obj, objects):
     s = status.of(obj)
     column = layout.column(align=True)
     column.label(text=obj.name, icon='OBJECT_DATA')
     column.label(text=f"{s.triangles} triangles, genus {s.genus}")
     column.label(text="Manifold" if s.manifold else "Not manifold", icon='CHECKMARK' if s.manifold else 'ERROR')
     column.label(text=f"{len(s.placed)} features placed")
+    names = features.shared_names(objects) if len(objects) > 1 else []
+    lacking = [name for name in names if name not in s.placed]
+    if lacking:  # allowed: the map is left free there
+        column.label(text=f"{len(names) - len(lacking)} of the set's {len(names)} (without {', '.join(lacking[:3])}"
+                          f"{'...' if len(lacking) > 3 else ''})", icon='INFO')
     if s.unplaced or s.ambiguous:
         column.label(text=f"{len(s.unplaced)} to place, {len(s.ambiguous)} invalid", icon='ERROR')
     column.label(text=RESULT_TEXT[s.result].capitalize(), icon=RESULT_ICONS[s.result])
@@ -118,21 +124,23 @@ class CM_PT_features(_Panel, bpy.types.Panel):
 
 
 def _draw_missing(layout, obj, objects):
-    """Names other objects of the set have and obj lacks or has not placed, with a Place button."""
+    """Features of obj still to place (empty groups) and features of other objects of the set obj does not
+    have (optional: its map is left free there), each with a Place button in Edit Mode."""
     names = []
     for other in objects:
         names += [n for n in features.features(other) if n not in names]
-    placed = features.features(obj)
-    missing = [n for n in names if n not in placed]
-    if not missing:
-        return
-    box = layout.box()
-    box.label(text="To place on this object:")
-    for name in missing:
-        row = box.row()
-        row.label(text=name, icon='ERROR')
-        if obj.mode == 'EDIT':
-            row.operator("consistent_maps.add_feature", text="Place at Selected").name = name
+    own = features.memberships(obj)
+    for title, listed in (("To place on this object:", [n for n, verts in own.items() if not verts]),
+                          ("Optional here (left free without):", [n for n in names if n not in own])):
+        if not listed:
+            continue
+        box = layout.box()
+        box.label(text=title)
+        for name in listed:
+            row = box.row()
+            row.label(text=name, icon='ERROR' if title.startswith("To place") else 'DOT')
+            if obj.mode == 'EDIT':
+                row.operator("consistent_maps.add_feature", text="Place at Selected").name = name
 
 
 class CM_PT_compute(_Panel, bpy.types.Panel):
@@ -222,9 +230,12 @@ class CM_PT_transfer(_Panel, bpy.types.Panel):
         column = layout.column(align=True)
         for kind, label, _ in operators_transfer.KINDS:
             column.operator("consistent_maps.transfer", text=label).kind = kind
+        settings = context.scene.consistent_maps
+        layout.prop(settings, "bake_size")
+        layout.operator("consistent_maps.bake_texture", icon='TEXTURE')
         row = layout.row(align=True)
-        row.prop(context.scene.consistent_maps, "bake_size")
-        row.operator("consistent_maps.bake_texture", icon='TEXTURE')
+        row.prop(settings, "normal_align", text="")
+        row.operator("consistent_maps.bake_normal_map", icon='NORMALS_FACE')
 
 
 CLASSES = (CM_UL_members, CM_UL_features, CM_PT_main, CM_PT_features, CM_PT_compute, CM_PT_results, CM_PT_morph,

@@ -12,6 +12,11 @@ EFFORT_ITEMS = [
     ('2', "Best", "Least stretch, slowest"),
 ]
 
+NORMAL_ALIGN_ITEMS = [
+    ('features', "Features", "Turn the source's normals by the least-squares rotation taking its features onto "
+                             "the active object's"),
+    ('none', "None", "The source's normals as they are (object space)"),
+]
 ALIGN_ITEMS = [
     ('features', "Features", "Least-squares rotation, scale and offset taking the target's features onto the own"),
     ('bounds', "Bounds", "The target's bounding box onto the own"),
@@ -52,6 +57,8 @@ class CM_Settings(bpy.types.PropertyGroup):
                                      description="The object whose layers are copied onto the active object")
     bake_size: IntProperty(name="Size", default=1024, min=16, max=16384, subtype='PIXEL',
                            description="Width and height of the baked image")
+    normal_align: EnumProperty(name="Align", items=NORMAL_ALIGN_ITEMS, default='features',
+                               description="How the source's normals are turned onto the active object")
     components: IntProperty(name="Components", default=3, min=1, max=64,
                             description="How many principal components the mean shape gets as shape keys")
     show_features: BoolProperty(name="Show Features", default=True, update=_redraw_views,

@@ -2,7 +2,9 @@
 
 Per-vertex layers are read at the source point each target vertex maps to; per-corner
 layers (UV maps, corner colours, custom normals, corner attributes) at the point of
-each target corner moved slightly into its own triangle, so seams stay seams. Every
+each target corner moved slightly into its own triangle, so seams stay seams; a UV map's
+coordinates of one target face are continued across the source's seams into one chart
+(so a face whose image straddles a seam does not span the whole texture). Every
 requested layer is checked and computed before the target is modified.
 """
 import bpy
@@ -21,7 +23,8 @@ def _read(collection, field, width):
     return values.reshape(-1, width) if width > 1 else values
 
 
-def _corner_normals(mesh):
+def corner_normals(mesh):
+    """(loops, 3) the shading normal of every face corner (smooth, flat or custom), object space."""
     if bpy.app.version >= (4, 1, 0):
         return _read(mesh.corner_normals, "vector", 3)
     mesh.calc_normals_split()
@@ -79,6 +82,12 @@ class _Values:
         self._vertex = self._corner = None
         self._source_triangles = meshdata.loop_triangles(source.data)
 
+    def uvs(self, uv):
+        """Source's per-corner texture coordinates at the target's corners, each face in one chart."""
+        if self._corner is None:
+            self._corner = maps.corner_landing(self.source, self.target)
+        return maps.uvs_at_corners(self.source, self.target, self._corner, uv)
+
     def at(self, domain, values):
         if domain == 'POINT':
             if self._vertex is None:
@@ -110,7 +119,7 @@ def transfer(source, target, uv_maps=(), color_attributes=(), normals=False, ver
     smesh, tmesh = source.data, target.data
     writes = []  # (write function, name); applied only once everything is computed
     for name in uv_maps:
-        uv = values.at('CORNER', _read(smesh.uv_layers[name].data, "uv", 2))
+        uv = values.uvs(_read(smesh.uv_layers[name].data, "uv", 2))
         writes.append((lambda name=name, uv=uv: (tmesh.uv_layers.get(name) or tmesh.uv_layers.new(name=name))
                        .data.foreach_set("uv", uv.astype(np.float32).ravel()), f"UV map {name}"))
     for name in color_attributes:
@@ -131,7 +140,7 @@ def transfer(source, target, uv_maps=(), color_attributes=(), normals=False, ver
         writes.append((lambda name=name, weights=weights: _write_weights(target, name, weights),
                        f"vertex group {name}"))
     if normals:
-        corner = values.at('CORNER', _corner_normals(smesh))
+        corner = values.at('CORNER', corner_normals(smesh))
         corner /= np.maximum(np.linalg.norm(corner, axis=1, keepdims=True), 1e-12)
         writes.append((lambda corner=corner: _write_normals(tmesh, corner), "normals"))
     for write, _ in writes:

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "consistent_maps/attribute_transfer.h"
 #include "consistent_maps/consistent_parameterization.h"
 #include "consistent_maps/constrained_parameterization.h"
 #include "consistent_maps/errors.h"
@@ -27,6 +28,7 @@
 #include "consistent_maps/intersurface_map.h"
 #include "consistent_maps/mesh_check.h"
 #include "consistent_maps/mesh_io.h"
+#include "consistent_maps/obj_attributes.h"
 #include "consistent_maps/spherical_parameterization.h"
 #include "consistent_maps/version.h"
 #include "json_reader.h"
@@ -45,6 +47,8 @@ const char* const kUsage = R"(usage:
                    [--seed N] [--effort 0|1|2] [--threads N] [--json]
   cmaps intersurface A B [--features FILE] -o DIR [--optimize R] [--seed N] [--effort 0|1|2]
                      [--threads N] [--json]
+  cmaps transfer SOURCE TARGET [--features FILE] -o OUT.obj [--positions] [--optimize R]
+                 [--seed N] [--effort 0|1|2] [--threads N] [--json]
   cmaps --help | --version
 
 commands:
@@ -81,16 +85,26 @@ commands:
            surface). Without --features (or with fewer than 3 pairs) pairs are
            added automatically. The map is optimized for symmetric distortion
            (--optimize rounds, each moving A's vertices then B's).
+  transfer map TARGET onto SOURCE as `intersurface` does and write OUT.obj:
+           TARGET's faces and vertex order with SOURCE's vertex colours
+           ("v x y z r g b") and texture coordinates (vt, per face corner: a
+           corner takes the coordinates inside the SOURCE triangle a point of
+           its own triangle next to it lands in, so seams stay seams) carried
+           over; with --positions, TARGET's vertices moved to where they land
+           on SOURCE (TARGET's mesh in SOURCE's shape). SOURCE must be an .obj
+           file for colours and texture coordinates; TARGET's own are not kept.
 
 options:
   -o, --output OUT   output file of `sphere` and `constrained`; output
                      directory of `consistent` and `intersurface` (created if missing)
   --features FILE    JSON object {"name": vertex_index, ...} (0-based, at least 3);
                      for `consistent` {"name": [index or null per input], ...};
-                     for `intersurface` {"name": [index_in_A, index_in_B], ...}
+                     for `intersurface` {"name": [index_in_A, index_in_B], ...},
+                     for `transfer` {"name": [index_in_SOURCE, index_in_TARGET], ...}
   --targets FILE     JSON object {"name": [x, y, z], ...} with the same names
                      (normalized; distinct); without it the targets are where
                      the unconstrained map puts the features
+  --positions        transfer: also carry SOURCE's positions over
   --refined-mesh PATH
                      also write OUT's mesh with 3D positions (Steiner vertices
                      on the input surface)
@@ -123,12 +137,13 @@ struct Arguments {
   std::string features, targets, refined_mesh;  // constrained only (features: consistent too)
   int remesh = 0, grid = 64, first = -1;        // consistent only
   bool remesh_given = false, grid_given = false, first_given = false;
-  int optimize = 2;  // intersurface only
+  int optimize = 2;  // intersurface and transfer only
   bool optimize_given = false;
   std::uint64_t seed = 1;
   int effort = 1;
   int threads = 2;
   bool json = false;
+  bool positions = false;  // transfer only
 };
 
 long long parse_integer(const std::string& option, const std::string& text, long long low, long long high) {
@@ -154,6 +169,7 @@ Arguments parse(const std::vector<std::string>& args) {
       return args[++i];
     };
     if (arg == "--json") a.json = true;
+    else if (arg == "--positions") a.positions = true;
     else if (arg == "-o" || arg == "--output") a.output = value();
     else if (arg == "--features") a.features = value();
     else if (arg == "--targets") a.targets = value();
@@ -167,22 +183,26 @@ Arguments parse(const std::vector<std::string>& args) {
     else if (arg == "--optimize") a.optimize = int(parse_integer(arg, value(), 0, 100)), a.optimize_given = true;
     else if (arg.size() > 1 && arg[0] == '-') throw UsageError("unknown option '" + arg + "' (see cmaps --help)");
     else if (a.command.empty()) a.command = arg;
-    else if (a.inputs.empty() || a.command == "consistent" || a.command == "intersurface") a.inputs.push_back(arg);
+    else if (a.inputs.empty() || a.command == "consistent" || a.command == "intersurface" || a.command == "transfer")
+      a.inputs.push_back(arg);
     else throw UsageError("unexpected argument '" + arg + "' (see cmaps --help)");
   }
   if (a.command.empty()) throw UsageError("missing command (see cmaps --help)");
   if (a.command != "check" && a.command != "sphere" && a.command != "constrained" && a.command != "consistent" &&
-      a.command != "intersurface")
+      a.command != "intersurface" && a.command != "transfer")
     throw UsageError("unknown command '" + a.command + "' (see cmaps --help)");
   if (a.inputs.empty()) throw UsageError("missing input mesh (see cmaps --help)");
   a.input = a.inputs.front();
   if (a.command != "check" && a.output.empty())
     throw UsageError(a.command +
-                     (a.command == "consistent" || a.command == "intersurface" ? " needs -o DIR" : " needs -o OUT") +
+                     (a.command == "consistent" || a.command == "intersurface" ? " needs -o DIR"
+                                                               : a.command == "transfer" ? " needs -o OUT.obj"
+                                                                                         : " needs -o OUT") +
                      " (see cmaps --help)");
   if (a.command == "check" && !a.output.empty()) throw UsageError("check takes no -o");
-  if (a.command != "intersurface" && a.optimize_given)
-    throw UsageError(a.command + " takes no --optimize (only intersurface does)");
+  if (a.command != "intersurface" && a.command != "transfer" && a.optimize_given)
+    throw UsageError(a.command + " takes no --optimize (only intersurface and transfer do)");
+  if (a.positions && a.command != "transfer") throw UsageError(a.command + " takes no --positions (only transfer does)");
   if (a.command != "consistent") {
     for (const auto& [option, given] : {std::pair<const char*, bool>{"--remesh", a.remesh_given},
                                         {"--grid", a.grid_given},
@@ -202,12 +222,13 @@ Arguments parse(const std::vector<std::string>& args) {
     for (const auto& [option, given] : {std::pair<const char*, const std::string&>{"--targets", a.targets},
                                         {"--refined-mesh", a.refined_mesh}})
       if (!given.empty()) throw UsageError("consistent takes no " + std::string(option) + " (only constrained does)");
-  } else if (a.command == "intersurface") {
+  } else if (a.command == "intersurface" || a.command == "transfer") {
     if (a.inputs.size() != 2)
-      throw UsageError("intersurface needs 2 input meshes (A B), got " + std::to_string(a.inputs.size()));
+      throw UsageError(a.command + " needs 2 input meshes (" +
+                       (a.command == "transfer" ? "SOURCE TARGET" : "A B") + "), got " + std::to_string(a.inputs.size()));
     for (const auto& [option, given] : {std::pair<const char*, const std::string&>{"--targets", a.targets},
                                         {"--refined-mesh", a.refined_mesh}})
-      if (!given.empty()) throw UsageError("intersurface takes no " + std::string(option) + " (only constrained does)");
+      if (!given.empty()) throw UsageError(a.command + " takes no " + std::string(option) + " (only constrained does)");
   } else if (a.command == "constrained") {
     if (a.features.empty()) throw UsageError("constrained needs --features FILE (see cmaps --help)");
   } else {
@@ -216,7 +237,8 @@ Arguments parse(const std::vector<std::string>& args) {
                                         {"--refined-mesh", a.refined_mesh}})
       if (!given.empty())
         throw UsageError(a.command + " takes no " + option +
-                         (std::string(option) == "--features" ? " (only constrained, consistent and intersurface do)"
+                         (std::string(option) == "--features"
+                              ? " (only constrained, consistent, intersurface and transfer do)"
                                                               : " (only constrained does)"));
   }
   return a;
@@ -266,6 +288,9 @@ struct Outcome {
   bool intersurface = false;
   std::optional<std::string> dirichlet, steiner_per_mesh, added_features;
   std::optional<int> feature_count;
+  // `transfer` only (with the intersurface keys above: TARGET onto SOURCE).
+  bool transfer = false;
+  std::optional<std::string> transferred;
 };
 
 void run_check(const Arguments& args, Outcome& out) {
@@ -830,6 +855,83 @@ void run_intersurface(const Arguments& args, Outcome& out) {
   out.summary = "wrote " + std::to_string(outputs.size()) + " files to " + args.output + ": " + line;
 }
 
+// ------------------------------------------------------------------ transfer
+
+void run_transfer(const Arguments& args, Outcome& out) {
+  out.intersurface = out.transfer = true;
+  check_output_path(args.output);
+  std::string ext = std::filesystem::path(args.output).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (ext != ".obj") throw UsageError("transfer writes OBJ: output '" + args.output + "' must end in .obj");
+  out.json.add_json("inputs", JsonObject::array(args.inputs));
+  const std::string &source_path = args.inputs[0], &target_path = args.inputs[1];
+  const cmaps::TriangleMesh source = cmaps::read_mesh(source_path);
+  const cmaps::TriangleMesh target = cmaps::read_mesh(target_path);
+  out.faces_per_input = JsonObject::array(std::vector<int>{int(source.triangles.size()), int(target.triangles.size())});
+  std::string source_ext = std::filesystem::path(source_path).extension().string();
+  std::transform(source_ext.begin(), source_ext.end(), source_ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  const cmaps::ObjAttributes attributes =
+      source_ext == ".obj" ? cmaps::read_obj_attributes(source_path) : cmaps::ObjAttributes{};
+  const bool colours = !attributes.colors.empty(), uvs = !attributes.triangle_uvs.empty();
+  if (!colours && !uvs && !args.positions)
+    throw cmaps::InvalidInput("'" + source_path + "' has no vertex colours or texture coordinates to transfer" +
+                              (source_ext == ".obj" ? "" : " (only .obj files carry them)") +
+                              "; give --positions to carry its shape over");
+  std::vector<cmaps::FeaturePair> features = read_feature_pairs(args, source, target);
+  for (cmaps::FeaturePair& f : features) std::swap(f.a, f.b);  // the map goes from TARGET (A) onto SOURCE (B)
+  out.feature_count = int(features.size());
+
+  cmaps::IntersurfaceOptions options;
+  options.sphere.seed = args.seed;
+  options.sphere.effort = args.effort;
+  options.sphere.threads = args.threads;
+  options.corner_images = uvs;
+  options.optimize_rounds = args.optimize;
+  if (args.optimize == 0) options.correspondence_weight = 0;  // the plain composition
+  const cmaps::IntersurfaceResult map =
+      with_terminal_progress(!args.json && isatty(STDERR_FILENO), [&](const cmaps::ProgressCallback& progress) {
+        try {
+          return cmaps::intersurface_map(target, source, features, options, progress);
+        } catch (const cmaps::InvalidInput& e) {  // the library calls the meshes A and B
+          throw cmaps::InvalidInput("mapping TARGET '" + target_path + "' (A) onto SOURCE '" + source_path +
+                                    "' (B): " + e.what());
+        }
+      });
+  const cmaps::ObjAttributes carried = cmaps::transfer_obj_attributes(source, attributes, target, map);
+  cmaps::write_obj_with_attributes(args.output, {args.positions ? map.a_on_b : target.vertices, target.triangles},
+                                   carried);
+
+  std::vector<std::string> transferred;
+  if (colours) transferred.push_back("colors");
+  if (uvs) transferred.push_back("uvs");
+  if (args.positions) transferred.push_back("positions");
+  out.transferred = JsonObject::array(transferred);
+  const cmaps::MapDistortion &ts = map.distortion_a_to_b, &st = map.distortion_b_to_a;
+  out.dirichlet = JsonObject::array(std::vector<double>{st.symmetric_dirichlet, ts.symmetric_dirichlet});
+  out.flips = JsonObject::array(std::vector<int>{st.flipped, ts.flipped});
+  out.efficiencies = JsonObject::array(std::vector<double>{map.efficiency_b, map.efficiency_a});
+  out.steiner_per_mesh = JsonObject::array(std::vector<int>{map.steiner_b, map.steiner_a});
+  std::string added = "[";
+  for (std::size_t k = features.size(); k < map.features.size(); ++k)
+    added += std::string(k > features.size() ? ", " : "") +
+             JsonObject::array(std::vector<int>{map.features[k].b, map.features[k].a});
+  out.added_features = added + "]";
+  out.outputs = JsonObject::array(std::vector<std::string>{args.output});
+  out.json.add("genus", map.genus)
+      .add("seconds_compute", map.seconds)
+      .add("seed", static_cast<unsigned long long>(args.seed))
+      .add("effort", args.effort)
+      .add("threads", args.threads)
+      .add("output", args.output);
+
+  std::string what;
+  for (const std::string& name : transferred) what += (what.empty() ? "" : ", ") + name;
+  char line[256];
+  std::snprintf(line, sizeof line, " through %zu feature pairs (%d added), symmetric Dirichlet %.4f (target onto source)",
+                map.features.size(), map.added_features, ts.symmetric_dirichlet);
+  out.summary = "wrote " + args.output + ": " + what + " of " + source_path + " on " + target_path + line;
+}
+
 std::string one_line(std::string message) {
   std::replace(message.begin(), message.end(), '\n', ' ');
   std::replace(message.begin(), message.end(), '\r', ' ');
@@ -849,6 +951,7 @@ int run(const std::vector<std::string>& argv) {
     else if (args.command == "sphere") run_sphere(args, out);
     else if (args.command == "consistent") run_consistent(args, out);
     else if (args.command == "intersurface") run_intersurface(args, out);
+    else if (args.command == "transfer") run_transfer(args, out);
     else run_constrained(args, out);
   } catch (const UsageError& e) {
     error = e.what(), code = 2;
@@ -882,6 +985,7 @@ int run(const std::vector<std::string>& argv) {
           .add("features", out.feature_count)
           .add_json("added_features", out.added_features)
           .add_json("outputs", out.outputs);
+      if (out.transfer) out.json.add_json("transferred", out.transferred);
     } else {
       out.json.add("faces", out.faces)
           .add("seconds", seconds_since(start))

@@ -211,7 +211,7 @@ def test_register_unregister():
 
 def test_every_operator_is_undoable():
     operators = [c for c in registration.CLASSES if issubclass(c, bpy.types.Operator)]
-    assert len(operators) == 18
+    assert len(operators) == 19
     for cls in operators:
         if cls.bl_idname != "consistent_maps.cancel":  # cancelling changes no data
             assert 'UNDO' in cls.bl_options, cls.bl_idname
@@ -288,9 +288,120 @@ def test_feature_problems_are_plain():
     b.vertex_groups["CM:left"].add([1, 2], 1.0, 'REPLACE')
     problems = "\n".join(api.feature_problems([a, b]))
     assert "'left' on 'B' has 2 vertices" in problems
-    assert "Feature 'right' is missing on 'B'" in problems
-    assert "shares 1 feature(s); at least 3" in problems
+    assert "'left', 'right' placed only on 'A'" in problems
+    assert "'B' has 1 of the set's features ('tip'); each object needs at least 3" in problems
+    assert "'A' has 1 of the set's features" in problems
     assert api.feature_problems([a]) == []
+
+
+def _extremes(obj, count=5):
+    """Vertices at the extremes of x, y and z: well-spread features on the ball."""
+    co = consistent_maps.maps.positions(obj.data)
+    picks = [int(co[:, 0].argmax()), int(co[:, 0].argmin()), int(co[:, 1].argmax()), int(co[:, 1].argmin()),
+             int(co[:, 2].argmax()), int(co[:, 2].argmin())]
+    return picks[:count]
+
+
+def _gapped_set():
+    """A, B, C (B and C other shapes) with features F1..F5; B lacks F5 and C lacks F4 (no group at all)."""
+    objects = [load(BALL, "A"), load(BALL, "B", location=(3, 0, 0)), load(BALL, "C", location=(6, 0, 0))]
+    objects[1].data.transform(np.diag([1.0, 1.6, 0.8, 1.0]))
+    objects[2].data.transform(np.diag([0.7, 1.0, 1.3, 1.0]))
+    vertices = _extremes(objects[0])
+    for obj, lacks in zip(objects, (None, "F5", "F4")):
+        for k, vertex in enumerate(vertices):
+            if f"F{k + 1}" != lacks:
+                api.add_feature(obj, f"F{k + 1}", vertex)
+    return objects
+
+
+def test_features_may_be_missing_on_some_objects():
+    a, b, c = _gapped_set()
+    assert api.feature_problems([a, b, c]) == []
+    assert api.feature_names([a, b, c]) == ["F1", "F2", "F3", "F4", "F5"]
+    make_set([a, b, c])
+    bpy.context.scene.consistent_maps.effort = '0'
+    assert bpy.ops.consistent_maps.compute() == {'FINISHED'}
+    locations = consistent_maps.results.feature_locations(bpy.context.scene)
+    assert list(locations) == ["F1", "F2", "F3", "F4", "F5"]
+    for obj, count in ((a, 5), (b, 4), (c, 4)):
+        sphere = api.sphere(obj)
+        assert on_unit_sphere(sphere) and consistent_maps.results.stats(obj.data)["bijective"]
+        placed = api.features(obj)
+        assert len(placed) == count
+        for name, vertex in placed.items():
+            assert np.allclose(sphere[vertex], locations[name], atol=1e-5), (obj.name, name)
+    # B and C share F1-F3: maps between them and alignment by their shared features work.
+    key = api.morph(b, c, align='features')
+    assert key.name == "→ C" and len(key.data) == len(b.data.vertices)
+    remeshed = api.remesh([a, b, c], 8)
+    assert all(list(api.features(r)) == ["F1", "F2", "F3", "F4", "F5"] for r in remeshed)
+
+
+def test_missing_features_what_is_still_required():
+    a, b, c = _gapped_set()
+    objects = [a, b, c]
+    make_set(objects)
+    before = [snapshot(obj) for obj in objects]
+    # A feature on a single object corresponds to nothing.
+    api.add_feature(c, "lonely", 7)
+    message = expect_error(bpy.ops.consistent_maps.compute, "'lonely' placed only on 'C'")
+    assert "at least one other object" in message
+    api.delete_feature([c], "lonely")
+    # Every object needs 3 of the set's features.
+    api.delete_feature([c], "F3")
+    api.delete_feature([c], "F2")
+    expect_error(bpy.ops.consistent_maps.compute, "'C' has 2 of the set's features ('F1', 'F5'); each object needs "
+                                                  "at least 3")
+    api.add_feature(c, "F2", _extremes(a)[1])
+    api.add_feature(c, "F3", _extremes(a)[2])
+    # One object must carry all of them.
+    api.delete_feature([a], "F1")
+    api.add_feature(a, "F6", 40)
+    api.add_feature(c, "F6", 40)
+    message = expect_error(bpy.ops.consistent_maps.compute, "No object has all 6 features of the set")
+    assert "place 'F1' on 'A'" in message, message
+    # An empty group is a feature still to place (not silently left out).
+    api.add_feature(a, "F1", _extremes(a)[0])
+    c.vertex_groups.new(name="CM:F4")
+    message = expect_error(bpy.ops.consistent_maps.compute, "'F4' is not placed on 'C'")
+    assert "delete the empty group" in message
+    assert [snapshot(obj)[:3] for obj in objects] == [s[:3] for s in before], "no results, nothing stored"
+
+
+class _Layout:
+    """Records the labels a panel's draw code makes (panels cannot draw in background mode)."""
+
+    def __init__(self, labels=None):
+        self.labels = [] if labels is None else labels
+
+    def label(self, text="", **_):
+        self.labels.append(text)
+
+    def operator(self, *_args, **_):
+        return type("Properties", (), {})()
+
+    def prop(self, *_args, **_):
+        pass
+
+    def column(self, **_):
+        return _Layout(self.labels)
+
+    row = box = column
+
+
+def test_panels_describe_a_set_with_gaps():
+    a, b, c = _gapped_set()
+    make_set([a, b, c])
+    from consistent_maps import panels
+    layout = _Layout()
+    panels._draw_status(layout, b, [a, b, c])
+    panels._draw_missing(layout, b, [a, b, c])
+    assert "4 of the set's 5 (without F5)" in layout.labels, layout.labels
+    assert "Optional here (left free without):" in layout.labels and "F5" in layout.labels, layout.labels
+    layout = _Layout()
+    panels._draw_status(layout, a, [a, b, c])
+    assert not any("of the set's" in label for label in layout.labels), "A has all of them"
 
 
 def test_add_feature_operator_in_edit_mode():
@@ -633,7 +744,7 @@ def test_error_missing_and_unplaced_features():
     b.vertex_groups.new(name="CM:left")
     make_set([a, b])
     before = [snapshot(a), snapshot(b)]
-    message = expect_error(bpy.ops.consistent_maps.compute, "missing on 'B'")
+    message = expect_error(bpy.ops.consistent_maps.compute, "'right' placed only on 'A'")
     assert "'left' is not placed on 'B'" in message and "at least 3" in message
     assert [snapshot(a), snapshot(b)] == before
 

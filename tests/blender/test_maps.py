@@ -106,6 +106,10 @@ def _relative_errors(source, target):
     uv = _get(target.data.uv_layers["cylinder"].data, "uv", 2)
     uv_range = truth_uv.max(axis=0) - truth_uv.min(axis=0)
     uv_error = (np.abs(uv - truth_uv) / uv_range).mean(axis=0).max()
+    # Faces across the whole texture, beyond those near the axis that do so in the truth: seams lost.
+    span = lambda u: (np.ptp(u[:, 0].reshape(-1, 3), axis=1) > 0.5).mean()  # noqa: E731 (triangles only)
+    print(f"  {100 * (span(uv) - span(truth_uv)):.2f} % of the faces span the texture (beyond the truth's)")
+    assert span(uv) - span(truth_uv) < 0.002, "a face whose image straddles a seam continues across it"
     return position, colour, uv_error
 
 
@@ -453,3 +457,340 @@ def test_bake_texture_errors():
     refused("stale")
     assert len(bpy.data.images) == images + 1, "no image but the test's own texture"
     assert snapshot(a)[0] == before[0][0]
+
+
+# -- normal-map bake --------------------------------------------------------------------------------------
+
+def _smooth(obj):
+    obj.data.polygons.foreach_set("use_smooth", np.ones(len(obj.data.polygons), dtype=bool))
+    obj.data.update()
+
+
+def _unit_uv(mesh, name="UVMap"):
+    uv = _cylinder_uv(mesh)
+    uv = (uv - uv.min(axis=0)) / np.ptp(uv, axis=0)
+    _new_uv(mesh, name, uv)
+    return uv
+
+
+def _bumpy_ball(name, location=(0, 0, 0), subdivisions=5):
+    """A fine icosphere with smooth bumps (radius 1 +- 0.06), smooth shaded, features at the axes' extremes."""
+    import bmesh
+    bm = bmesh.new()
+    bmesh.ops.create_icosphere(bm, subdivisions=subdivisions, radius=1.0)
+    mesh = bpy.data.meshes.new(name)
+    bm.to_mesh(mesh)
+    bm.free()
+    co = maps.positions(mesh)
+    bumps = 1 + 0.06 * np.sin(9 * co[:, 0]) * np.sin(9 * co[:, 1]) * np.sin(9 * co[:, 2] + 1)
+    mesh.vertices.foreach_set("co", (co * bumps[:, None]).astype(np.float32).ravel())
+    mesh.update()
+    obj = bpy.data.objects.new(name, mesh)
+    obj.location = location
+    bpy.context.scene.collection.objects.link(obj)
+    _smooth(obj)
+    return obj
+
+
+def _axis_features(obj):
+    co = maps.positions(obj.data)
+    for name, axis, sign in (("+x", 0, 1), ("-x", 0, -1), ("+y", 1, 1), ("-y", 1, -1), ("+z", 2, 1), ("-z", 2, -1)):
+        api.add_feature(obj, name, int((sign * co[:, axis]).argmax()))
+
+
+def _decoded(image):
+    size = image.size[0]
+    pixels = np.empty(size * size * 4, dtype=np.float32)
+    image.pixels.foreach_get(pixels)
+    return pixels.reshape(size, size, 4)[..., :3].astype(np.float64) * 2 - 1
+
+
+def _blender_frame_at_centroids(mesh, uv_map):
+    """Per loop triangle: (centroid UV, tangent, bitangent, normal) of Blender's tangent space (MikkTSpace,
+    mesh.calc_tangents), interpolated at the centroid as the Normal Map node does."""
+    mesh.calc_tangents(uvmap=uv_map)
+    tangent, normal = _get(mesh.loops, "tangent", 3), _get(mesh.loops, "normal", 3)
+    sign = _get(mesh.loops, "bitangent_sign", 1)
+    mesh.free_tangents()
+    _, corners = meshdata.loop_triangles(mesh)
+    t, n = tangent[corners].mean(axis=1), normal[corners].mean(axis=1)
+    b = np.sign(sign[corners[:, 0]])[:, None] * np.cross(n, t)
+    uv = _get(mesh.uv_layers[uv_map].data, "uv", 2)[corners].mean(axis=1)
+    return uv, t, b, n
+
+
+def _tilt(tangent_space):
+    """Degrees between decoded tangent-space normals (..., 3) and (0, 0, 1) (robust to 8-bit z = 1)."""
+    return np.degrees(np.arctan2(np.hypot(tangent_space[..., 0], tangent_space[..., 1]), tangent_space[..., 2]))
+
+
+def _angles(a, b):
+    a = a / np.linalg.norm(a, axis=1, keepdims=True)
+    b = b / np.linalg.norm(b, axis=1, keepdims=True)
+    return np.degrees(np.arccos(np.clip((a * b).sum(axis=1), -1, 1)))
+
+
+def _shown_at_centroids(image, mesh, uv_map="UVMap"):
+    """Per loop triangle: the normal Blender's Normal Map node makes of the image's pixel at the triangle's
+    UV centroid (decoded in the MikkTSpace frame interpolated there), and that frame's normal."""
+    size = image.size[0]
+    uv, t, b, n = _blender_frame_at_centroids(mesh, uv_map)
+    pixel = np.clip((uv * size).astype(int), 0, size - 1)
+    tangent_space = _decoded(image)[pixel[:, 1], pixel[:, 0]]
+    return tangent_space[:, :1] * t + tangent_space[:, 1:2] * b + tangent_space[:, 2:] * n, n, tangent_space
+
+
+def test_bake_normal_map_onto_an_identical_copy_is_flat():
+    """A copy of the same mesh (same shape, same map) already has the source's normals: the baked
+    tangent-space map is (0, 0, 1) wherever the layout covers the image, and decoded it gives the copy's own
+    normals."""
+    source, target = _cactus_pair("cactus0")
+    for obj in (source, target):
+        _smooth(obj)
+    api.compute([source, target], effort=0)
+    _unit_uv(target.data)
+    before = snapshot(target), snapshot(source), bpy.context.scene.render.engine, len(bpy.data.materials)
+    image = api.bake_normal_map(source, target, 128)
+    assert image.colorspace_settings.name == 'Non-Color' and image.size[:] == (128, 128)
+    deviation = _tilt(_decoded(image))
+    shown, own, _ = _shown_at_centroids(image, target.data)
+    error = _angles(shown, own)
+    print(f"  normal map onto an identical copy: mean {deviation.mean():.2f} deg from (0, 0, 1), "
+          f"{(deviation > 2).mean() * 100:.2f} % of the pixels over 2 deg; decoded: {error.mean():.2f} deg from "
+          f"the copy's own normals (99 %: {np.percentile(error, 99):.2f})")
+    assert deviation.mean() < 1 and np.percentile(deviation, 99) < 2, (deviation.mean(), deviation.max())
+    assert error.mean() < 1 and np.percentile(error, 99) < 3, (error.mean(), np.percentile(error, 99))
+    assert (snapshot(target), snapshot(source), bpy.context.scene.render.engine, len(bpy.data.materials)) == before
+    assert len(bpy.data.objects) == 2 and len(bpy.data.images) == 1, "temporaries are gone"
+
+
+def test_bake_normal_map_shows_the_sources_normals_in_blenders_tangent_space():
+    """Bumps of a fine ball baked onto a coarse ellipsoid: decoding the map in the frame of mesh.calc_tangents
+    (as the Normal Map node does) gives the source's normal at the point the map takes each target triangle's
+    centroid to, far from the target's own normal where the shapes differ."""
+    source = _bumpy_ball("Bumpy", subdivisions=4)
+    target = load(BALL, "Ellipsoid", location=(3, 0, 0))
+    target.data.transform(np.diag([1.0, 1.6, 0.8, 1.0]))
+    _smooth(target)
+    for obj in (source, target):
+        _axis_features(obj)
+    api.compute([source, target], effort=0)
+    _unit_uv(target.data)
+    shown, n, tangent_space = _shown_at_centroids(api.bake_normal_map(source, target, 256, align='none'),
+                                                  target.data)
+    from consistent_maps import bake, results
+    vertices, _ = meshdata.loop_triangles(target.data)
+    directions = results.sphere(target.data)[vertices].mean(axis=1)
+    expected = bake._source_normals_at(source, directions / np.linalg.norm(directions, axis=1, keepdims=True),
+                                       np.eye(3))
+    error, own = _angles(shown, expected), _angles(n, expected)
+    print(f"  normal map onto another shape: {error.mean():.2f} deg from the source's normals (95 %: "
+          f"{np.percentile(error, 95):.2f}); the target's own normals are {own.mean():.1f} deg off")
+    assert error.mean() < 2 and np.percentile(error, 95) < 5 and own.mean() > 8, (
+        error.mean(), np.percentile(error, 95), own.mean())
+    assert _tilt(tangent_space).mean() > 8, "the map deviates from (0, 0, 1) where the shapes differ"
+
+
+def test_bake_normal_map_aligned_by_features_undoes_a_rotation():
+    """A turned copy: with align='features' its normals, turned back, are the target's own (flat map);
+    without alignment they are off by the rotation."""
+    from test_addon import _extremes
+    source, target = load(BALL, "Turned"), load(BALL, "Target", location=(3, 0, 0))
+    angle = np.radians(40)
+    source.data.transform(np.array([[np.cos(angle), -np.sin(angle), 0, 0], [np.sin(angle), np.cos(angle), 0, 0],
+                                    [0, 0, 1, 0], [0, 0, 0, 1]]))
+    vertices = _extremes(target, 6)  # the same vertices on both: the copy's own extremes turned
+    for obj in (source, target):
+        _smooth(obj)
+        with_features(obj, ("a", "b", "c", "d", "e", "f"), vertices)
+    api.compute([source, target], effort=0)
+    _unit_uv(target.data)
+    uv, *_ = _blender_frame_at_centroids(target.data, "UVMap")
+    pixel = np.clip((uv * 64).astype(int), 0, 63)
+    for align, low, high in (('features', 0, 3), ('none', 20, 45)):
+        deviation = _tilt(_decoded(api.bake_normal_map(source, target, 64, align=align))[pixel[:, 1], pixel[:, 0]])
+        print(f"  turned copy, align {align!r}: {deviation.mean():.2f} deg from the target's own normals")
+        assert low <= deviation.mean() <= high, (align, deviation.mean())
+
+
+def _normal_pattern(size=128):
+    """A tangent-space normal map image (Non-Color) with waves along u and v."""
+    ramp = (np.arange(size) + 0.5) / size
+    u, v = np.meshgrid(ramp, ramp)  # rows: v
+    t = np.stack([0.4 * np.sin(2 * np.pi * 3 * u), 0.4 * np.sin(2 * np.pi * 2 * v), np.ones_like(u)], axis=-1)
+    t /= np.linalg.norm(t, axis=-1, keepdims=True)
+    image = bpy.data.images.new("waves", size, size, float_buffer=True)
+    image.colorspace_settings.name = 'Non-Color'
+    pixels = np.concatenate([t * 0.5 + 0.5, np.ones((size, size, 1))], axis=-1)
+    image.pixels.foreach_set(pixels.astype(np.float32).ravel())
+    return image, t
+
+
+def _with_normal_map(obj, image):
+    material = bpy.data.materials.new(f"{obj.name} bumps")
+    material.use_nodes = True
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    texture = nodes.new("ShaderNodeTexImage")
+    texture.image = image
+    normal_map = nodes.new("ShaderNodeNormalMap")
+    normal_map.uv_map = "UVMap"
+    links.new(texture.outputs["Color"], normal_map.inputs["Color"])
+    links.new(normal_map.outputs["Normal"], nodes["Principled BSDF"].inputs["Normal"])
+    obj.data.materials.append(material)
+    return material
+
+
+def test_bake_normal_map_carries_the_sources_normal_map():
+    """The source's own tangent-space normal map goes along: onto an identical copy with the same UV
+    layout, the baked map is the source's normal map image."""
+    source, target = _cactus_pair("cactus0")
+    for obj in (source, target):
+        _smooth(obj)
+    api.compute([source, target], effort=0)
+    for obj in (source, target):
+        _unit_uv(obj.data)
+    image, truth = _normal_pattern()
+    _with_normal_map(source, image)
+    size = 128
+    decoded = _decoded(api.bake_normal_map(source, target, size, align='none'))
+    uv, *_ = _blender_frame_at_centroids(target.data, "UVMap")
+    pixel = np.clip((uv * size).astype(int), 0, size - 1)
+    error = _angles(decoded[pixel[:, 1], pixel[:, 0]], truth[pixel[:, 1], pixel[:, 0]])
+    print(f"  source's normal map onto an identical copy: mean {error.mean():.2f} deg off "
+          f"(95 %: {np.percentile(error, 95):.2f})")
+    assert error.mean() < 2 and np.percentile(error, 95) < 5, error.mean()
+
+
+def test_bake_normal_map_operator_and_errors():
+    a, b = _pair()
+    images, materials = len(bpy.data.images), len(bpy.data.materials)
+    before = [snapshot(a), snapshot(b)]
+
+    def refused(fragment, source=a, target=b, size=64, **options):
+        try:
+            api.bake_normal_map(source, target, size, **options)
+            raise AssertionError(f"expected '{fragment}'")
+        except api.MapError as e:
+            assert fragment in str(e), str(e)
+        assert (len(bpy.data.images), len(bpy.data.materials)) == (images, materials), "nothing created"
+    refused("no UV map to bake into")
+    _unit_uv(b.data)
+    refused("Unknown alignment 'bounds'", align='bounds')
+    refused("between 16 and 16384 pixels, not 8", size=8)
+    bpy.context.scene.consistent_maps.transfer_source = a
+    bpy.context.scene.consistent_maps.bake_size = 32
+    select([b])
+    assert bpy.ops.consistent_maps.bake_normal_map() == {'FINISHED'}
+    assert bpy.data.images["B normals from A"].size[:] == (32, 32)
+    bpy.data.images.remove(bpy.data.images["B normals from A"])
+    bpy.context.scene.consistent_maps.transfer_source = b
+    select([a])  # a has no UV map
+    expect_error(bpy.ops.consistent_maps.bake_normal_map, "'A' has no UV map to bake into")
+    # Aligning by features needs 3 shared.
+    api.delete_feature([a], "tip")
+    refused("share 2 placed feature(s)", align='features')
+    # Objects from different computations, stale results.
+    c = with_features(load(BALL, "C", location=(6, 0, 0)))
+    api.compute([c], effort=0)
+    refused("were not computed together", target=c)
+    _unit_uv(c.data)
+    b.data.vertices[0].co.x += 0.01
+    refused("stale")
+    assert snapshot(a)[:3] == before[0][:3], "the source keeps its result and data"
+
+
+def _shaded(obj, normal_map=None, uv_map="UVMap"):
+    """A grey Principled material, with the normal map image (tangent space of uv_map) when given."""
+    material = bpy.data.materials.new(f"{obj.name} grey")
+    material.use_nodes = True
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    principled = nodes["Principled BSDF"]
+    principled.inputs["Base Color"].default_value = (0.7, 0.7, 0.7, 1)
+    principled.inputs["Roughness"].default_value = 0.6
+    if normal_map is not None:
+        uv = nodes.new("ShaderNodeUVMap")
+        uv.uv_map = uv_map
+        texture = nodes.new("ShaderNodeTexImage")
+        texture.image = normal_map
+        node = nodes.new("ShaderNodeNormalMap")
+        node.uv_map = uv_map
+        links.new(uv.outputs["UV"], texture.inputs["Vector"])
+        links.new(texture.outputs["Color"], node.inputs["Color"])
+        links.new(node.outputs["Normal"], principled.inputs["Normal"])
+    obj.data.materials.clear()
+    obj.data.materials.append(material)
+
+
+def test_render_normal_map_transfer():
+    """Thesis Fig. 4.4 in small: the bumps of a fine ball (left) carried as a baked normal map onto a coarse
+    ellipsoid of 382 vertices (right; the ellipsoid alone in the middle). Cycles renders
+    out/blender/normal_map-<version>.png; the right one must show the bumps the middle one lacks."""
+    source = _bumpy_ball("Bumpy", location=(-2.8, 0, 0))  # one object per third of the image
+    target = load(BALL, "Ellipsoid", location=(2.8, 0, 0))
+    target.data.transform(np.diag([1.3, 1.3, 1.0, 1.0]))
+    _smooth(target)
+    for obj in (source, target):
+        _axis_features(obj)
+    api.compute([source, target], effort=0)
+    _unit_uv(target.data)
+    image = api.bake_normal_map(source, target, 512, align='none')
+    plain = bpy.data.objects.new("Plain", target.data.copy())
+    bpy.context.scene.collection.objects.link(plain)
+    _shaded(source)
+    _shaded(plain)
+    _shaded(target, image)
+    scene = bpy.context.scene
+    camera = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
+    scene.collection.objects.link(camera)
+    camera.data.type, camera.data.ortho_scale = 'ORTHO', 8.4
+    camera.location, camera.rotation_euler = (0, -8, 0), (np.pi / 2, 0, 0)
+    scene.camera = camera
+    sun = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", 'SUN'))
+    sun.data.energy = 2.5
+    sun.rotation_euler = (np.radians(25), 0, 0)  # from above, grazing the front: no shadow on a neighbour
+    scene.collection.objects.link(sun)
+    scene.render.engine = 'CYCLES'
+    scene.cycles.samples, scene.cycles.use_denoising = 16, False
+    scene.render.resolution_x, scene.render.resolution_y = 3 * CELL, CELL
+    scene.render.image_settings.file_format = 'PNG'
+    OUT.mkdir(parents=True, exist_ok=True)
+    path = OUT / f"normal_map-{VERSION}.png"
+    scene.render.filepath = str(path)
+    bpy.ops.render.render(write_still=True)
+    rendered = bpy.data.images.load(str(path))
+    pixels = np.empty(3 * CELL * CELL * 4, dtype=np.float32)
+    rendered.pixels.foreach_get(pixels)
+    grey = pixels.reshape(CELL, 3 * CELL, 4)[..., :3].mean(axis=-1)
+    blocks = grey.reshape(CELL // 8, 8, 3 * CELL // 8, 8).mean(axis=(1, 3))  # 8x8 averages: no sampling noise
+    middle, right = blocks[:, CELL // 8:2 * CELL // 8], blocks[:, 2 * CELL // 8:]
+    inside = (middle > 0.1) & (right > 0.1)  # the lit ellipsoid, the same silhouette in both
+    change = np.abs(right - middle)[inside].mean()
+    print(f"  rendered {path.name}: the baked normal map changes the ellipsoid's brightness by {change:.3f} on "
+          f"average over {inside.sum()} blocks of 8x8 pixels")
+    assert inside.sum() > 50 and change > 0.015, (inside.sum(), change)  # without the map: 0.004 (noise)
+
+
+def test_bake_normal_map_refuses_ngons_in_the_target():
+    """Blender has no tangent space on faces of more than 4 corners: a clear message, nothing created; as a
+    source (without a normal map of its own) such a mesh is fine."""
+    ring = [(np.cos(a), np.sin(a)) for a in np.linspace(0, 2 * np.pi, 6, endpoint=False)]
+    faces = [tuple(range(5, -1, -1)), tuple(range(6, 12))] + [(i, (i + 1) % 6, (i + 1) % 6 + 6, i + 6)
+                                                             for i in range(6)]
+    mesh = bpy.data.meshes.new("Prism")
+    mesh.from_pydata([(x, y, z) for z in (-1, 1) for x, y in ring], [], faces)
+    prism = bpy.data.objects.new("Prism", mesh)
+    bpy.context.scene.collection.objects.link(prism)
+    ball = load(BALL, "Ball", location=(3, 0, 0))
+    with_features(prism, ("a", "b", "c"), (0, 3, 8))
+    with_features(ball, ("a", "b", "c"), (0, 100, 200))
+    api.compute([prism, ball], effort=0)
+    for obj in (prism, ball):
+        obj.data.uv_layers.new(name="UVMap")
+    images = len(bpy.data.images)
+    try:
+        api.bake_normal_map(ball, prism, 32)
+        raise AssertionError("n-gons have no tangent space")
+    except api.MapError as e:
+        assert "'Prism' has faces with more than 4 corners" in str(e) and "Triangulate" in str(e), str(e)
+    assert len(bpy.data.images) == images
+    assert api.bake_normal_map(prism, ball, 32).size[:] == (32, 32)

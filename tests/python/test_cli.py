@@ -3,6 +3,7 @@ import json
 import math
 import subprocess
 
+import numpy as np
 import pytest
 
 from conftest import BAD_FILES, REJECTED, SHARED, rejection_reason
@@ -137,3 +138,161 @@ def test_sphere_ply_output_and_determinism(cmaps_binary, tmp_path, native):
     _, input_triangles = native.read_mesh(SPOT_LOW)
     assert (triangles == input_triangles).all()
     assert sphere.shape == (829, 3)
+
+
+# -- cmaps transfer ------------------------------------------------------------------------------------
+
+CACTUS = SHARED / "sets" / "cactus"
+
+
+def farthest(vertices, count):
+    chosen, distance = [0], None
+    for _ in range(count - 1):
+        step = ((vertices - vertices[chosen[-1]]) ** 2).sum(axis=1)
+        distance = step if distance is None else np.minimum(distance, step)
+        chosen.append(int(distance.argmax()))
+    return chosen
+
+
+def cylinder_uv(vertices, triangles):
+    """(triangles, 3, 2) UVs around the vertical axis with a seam: corners of a face across it get u + 1."""
+    centre = (vertices.min(axis=0) + vertices.max(axis=0)) / 2
+    u = (np.arctan2(vertices[:, 1] - centre[1], vertices[:, 0] - centre[0]) / (2 * np.pi) + 0.5)[triangles]
+    wraps = (u.max(axis=1) - u.min(axis=1) > 0.5)[:, None] & (u < 0.5)
+    return np.stack([np.where(wraps, u + 1, u), vertices[triangles, 2]], axis=-1)
+
+
+def colours_of(vertices):
+    return (vertices - vertices.min(axis=0)) / (vertices.max(axis=0) - vertices.min(axis=0))
+
+
+def write_attributed_obj(path, vertices, triangles, colours, corner_uv):
+    """OBJ with "v x y z r g b", one vt per corner and "f v/vt" faces."""
+    lines = [f"v {p[0]:.17g} {p[1]:.17g} {p[2]:.17g} {c[0]:.6g} {c[1]:.6g} {c[2]:.6g}" for p, c in zip(vertices, colours)]
+    lines += [f"vt {u:.9g} {v:.9g}" for u, v in corner_uv.reshape(-1, 2)]
+    lines += [f"f {a + 1}/{3 * t + 1} {b + 1}/{3 * t + 2} {c + 1}/{3 * t + 3}" for t, (a, b, c) in enumerate(triangles)]
+    path.write_text("\n".join(lines) + "\n")
+
+
+def read_attributed_obj(path):
+    """(vertices (n, 3), colours (n, 3) or None, triangles (m, 3), corner UVs (m, 3, 2) or None)."""
+    vertices, colours, uvs, faces, face_uvs = [], [], [], [], []
+    for line in path.read_text().splitlines():
+        parts = line.split()
+        if not parts:
+            continue
+        if parts[0] == "v":
+            vertices.append([float(x) for x in parts[1:4]])
+            if len(parts) >= 7:
+                colours.append([float(x) for x in parts[4:7]])
+        elif parts[0] == "vt":
+            uvs.append([float(x) for x in parts[1:3]])
+        elif parts[0] == "f":
+            corners = [c.split("/") for c in parts[1:]]
+            faces.append([int(c[0]) - 1 for c in corners])
+            if all(len(c) > 1 and c[1] for c in corners):
+                face_uvs.append([int(c[1]) - 1 for c in corners])
+    uvs = np.array(uvs)
+    return (np.array(vertices), np.array(colours) if colours else None, np.array(faces),
+            uvs[np.array(face_uvs)] if face_uvs else None)
+
+
+@pytest.fixture(scope="module")
+def cactus_source(native, tmp_path_factory):
+    """cactus0 as an OBJ with colours from its positions and a seamed cylinder UV map, and its features."""
+    folder = tmp_path_factory.mktemp("transfer")
+    vertices, triangles = native.read_mesh(str(CACTUS / "cactus0.ply"))
+    colours, uv = colours_of(vertices), cylinder_uv(vertices, triangles)
+    path = folder / "cactus0.obj"
+    write_attributed_obj(path, vertices, triangles, colours, uv)
+    features = folder / "features.json"
+    features.write_text(json.dumps({f"f{k}": [v, v] for k, v in enumerate(farthest(vertices, 10))}))
+    return path, features, vertices, triangles, colours, uv
+
+
+def transfer(binary, source, target, out, *extra):
+    result = run(binary, "transfer", source, target, "-o", out, *extra, "--json")
+    assert result.returncode == 0, result.stderr
+    report = json.loads(result.stdout)
+    assert report["error"] is None
+    return report
+
+
+def test_transfer_onto_an_identical_copy_is_exact(cmaps_binary, cactus_source, tmp_path):
+    """A copy of the source gets the source's map: colours, seamed per-corner UVs and positions come out as
+    they went in (the UVs up to the corner nudge)."""
+    source, features, vertices, triangles, colours, uv = cactus_source
+    out = tmp_path / "copy.obj"
+    report = transfer(cmaps_binary, source, CACTUS / "cactus0.ply", out, "--features", features, "--positions",
+                      "--effort", "0")
+    assert report["transferred"] == ["colors", "uvs", "positions"] and report["outputs"] == [str(out)]
+    assert report["faces"] == [len(triangles)] * 2 and report["features"] == 10
+    got_vertices, got_colours, got_triangles, got_uv = read_attributed_obj(out)
+    assert (got_triangles == triangles).all()
+    assert np.abs(got_vertices - vertices).max() < 1e-9
+    assert np.abs(got_colours - colours).max() < 1e-5
+    assert np.abs(got_uv - uv).max() < 1e-3, "seams stay seams: every corner keeps its own UV"
+
+
+def test_transfer_between_cactus_poses_reproduces_the_targets_own_values(cmaps_binary, cactus_source, tmp_path):
+    """cactus0 -> cactus3 (shared vertex order: the truth is the source's value at the same vertex or corner)."""
+    source, features, vertices, triangles, colours, uv = cactus_source
+    out = tmp_path / "pose3.obj"
+    report = transfer(cmaps_binary, source, CACTUS / "cactus3.ply", out, "--features", features, "--positions")
+    got_vertices, got_colours, got_triangles, got_uv = read_attributed_obj(out)
+    assert (got_triangles == triangles).all()
+    diagonal = np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0))
+    position = np.linalg.norm(got_vertices - vertices, axis=1).mean() / diagonal
+    colour = np.abs(got_colours - colours).mean()
+    uv_error = (np.abs(got_uv - uv).reshape(-1, 2) / np.ptp(uv.reshape(-1, 2), axis=0)).mean(axis=0).max()
+    # Triangles across the whole texture, beyond those near the axis that do so in the truth: seams lost.
+    spanning = (np.ptp(got_uv[:, :, 0], axis=1) > 0.5).mean() - (np.ptp(uv[:, :, 0], axis=1) > 0.5).mean()
+    print(f"cactus0 -> cactus3: positions {100 * position:.2f} % of the diagonal, colour {100 * colour:.2f} %, "
+          f"UV {100 * uv_error:.2f} % of the range, {100 * spanning:.2f} % of the triangles span the texture; "
+          f"symmetric Dirichlet {report['symmetric_dirichlet']}")
+    assert position < 0.03 and colour < 0.04 and uv_error < 0.045 and spanning < 0.005, (
+        position, colour, uv_error, spanning)
+    features_in = json.loads(features.read_text())
+    for vertex, _ in features_in.values():  # feature vertices land exactly on their partners
+        assert np.abs(got_vertices[vertex] - vertices[vertex]).max() < 1e-9
+
+
+def test_transfer_without_positions_keeps_the_targets_shape(cmaps_binary, cactus_source, tmp_path, native):
+    source, features, *_ = cactus_source
+    out = tmp_path / "pose1.obj"
+    report = transfer(cmaps_binary, source, CACTUS / "cactus1.ply", out, "--effort", "0")
+    assert report["transferred"] == ["colors", "uvs"] and report["features"] == 0 and len(report["added_features"]) == 4
+    target = native.read_mesh(str(CACTUS / "cactus1.ply"))
+    got_vertices, got_colours, _, got_uv = read_attributed_obj(out)
+    assert np.abs(got_vertices - target[0]).max() < 1e-6
+    assert got_colours.shape == target[0].shape and got_uv.shape == (len(target[1]), 3, 2)
+
+
+def test_transfer_bad_inputs_give_one_clear_line(cmaps_binary, cactus_source, tmp_path):
+    source, features, vertices, triangles, colours, uv = cactus_source
+    out = tmp_path / "out.obj"
+    plain = CACTUS / "cactus0.ply"
+    partial = tmp_path / "partial.obj"
+    text = source.read_text().splitlines()
+    last_face = max(i for i, line in enumerate(text) if line.startswith("f "))
+    text[last_face] = "f " + " ".join(c.split("/")[0] for c in text[last_face].split()[1:])
+    partial.write_text("\n".join(text) + "\n")
+    bad_features = tmp_path / "bad.json"
+    bad_features.write_text(json.dumps({"nose": [5, 99999]}))
+    cases = [
+        ((plain, plain, "-o", out), "has no vertex colours or texture coordinates to transfer (only .obj files"),
+        ((source, plain, "-o", tmp_path / "out.ply"), "transfer writes OBJ: output"),
+        ((tmp_path / "missing.obj", plain, "-o", out), "missing.obj': no such file"),
+        ((partial, plain, "-o", out), "the face has no texture coordinates but the face on line"),
+        ((source, SHARED / "higher-genus" / "torus.obj", "-o", out), "has genus"),
+        ((source, plain, "-o", out, "--features", bad_features), 'feature "nose": vertex 99999 is out of range for'),
+        ((source, plain, "-o", tmp_path / "no" / "out.obj"), "does not exist"),
+    ]
+    for args, reason in cases:
+        expect_failure(run(cmaps_binary, "transfer", *args), reason)
+        expect_failure(run(cmaps_binary, "transfer", *args, "--json"), reason, json_output=True)
+        assert not out.exists()
+    result = run(cmaps_binary, "transfer", source, "-o", out)
+    assert result.returncode == 2 and "transfer needs 2 input meshes (SOURCE TARGET), got 1" in result.stderr
+    result = run(cmaps_binary, "sphere", source, "-o", out, "--positions")
+    assert result.returncode == 2 and "sphere takes no --positions (only transfer does)" in result.stderr

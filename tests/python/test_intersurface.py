@@ -175,4 +175,21 @@ def test_cli_usage(cmaps_binary, tmp_path):
     result = run(cmaps_binary, "intersurface", SPOT, SPHERE, "-o", tmp_path / "out", "--optimize", "-1")
     assert result.returncode == 2 and "--optimize expects an integer in [0, 100], got '-1'" in result.stderr
     result = run(cmaps_binary, "sphere", SPOT, "-o", tmp_path / "s.obj", "--optimize", "1")
-    assert result.returncode == 2 and "sphere takes no --optimize (only intersurface does)" in result.stderr
+    assert result.returncode == 2 and "sphere takes no --optimize (only intersurface and transfer do)" in result.stderr
+
+
+def test_continue_across_seams(native):
+    """Two triangles whose texture coordinates jump by -1 in u across their shared edge (a cylinder's seam):
+    a point of the second expressed in the first's chart continues to u = 1, not 0."""
+    triangles = np.array([[0, 1, 2], [1, 3, 2]])
+    triangle_uvs = np.array([[0, 1, 2], [3, 4, 5]])
+    uvs = np.array([[0.9, 0], [1, 0], [0.9, 1], [0, 0], [0, 1], [-0.1, 1]])
+    values = np.array([[0.95, 0.5], [0.0, 1.0], [0.0, 0.0]])
+    result = native.continue_across_seams(triangles, triangle_uvs, uvs, [0, 1, 1], values, [0, 0, 1])
+    assert np.allclose(result, [[0.95, 0.5], [1.0, 1.0], [0.0, 0.0]])  # the third keeps its own chart
+    with pytest.raises(IndexError, match=r"point_triangles\[0\] is 2, out of range \[0, 2\)"):
+        native.continue_across_seams(triangles, triangle_uvs, uvs, [2, 1, 1], values, [0, 0, 1])
+    with pytest.raises(IndexError, match=r"triangle_uvs\[1\] refers to row 9 of 6 uvs"):
+        native.continue_across_seams(triangles, [[0, 1, 2], [3, 4, 9]], uvs, [0, 1, 1], values, [0, 0, 1])
+    with pytest.raises(ValueError, match=r"values must have shape \(n, 2\)"):
+        native.continue_across_seams(triangles, triangle_uvs, uvs, [0, 1, 1], values[:, :1], [0, 0, 1])

@@ -64,6 +64,9 @@ struct IntersurfaceOptions {
   // weight on its consistency with B's map (0: not at all). With neither,
   // the result is the plain composition.
   double correspondence_weight = 0.25;
+  // Also map every triangle corner of A (IntersurfaceResult::a_corners_to_b),
+  // for transferring per-corner values such as texture coordinates.
+  bool corner_images = false;
 };
 
 // Distortion of the map sampled at the vertices: each triangle of the source
@@ -85,6 +88,12 @@ struct MapDistortion {
 struct IntersurfaceResult {
   std::vector<SurfacePoint> a_to_b;  // per vertex of A: its image on B (B's input triangles)
   std::vector<SurfacePoint> b_to_a;  // per vertex of B: its image on A
+  // With options.corner_images: per triangle of A, per corner (3 t + k), the
+  // image on B of the point of that triangle next to the corner (moved into
+  // it by 1e-3 of the way to the other corners, on A's map). Corners of one
+  // vertex in triangles on both sides of a seam of B's per-corner values thus
+  // land on their own side of it.
+  std::vector<SurfacePoint> a_corners_to_b;
   std::vector<Vec3> a_on_b;          // per vertex of A: the position of its image on B
   std::vector<Vec3> b_on_a;          // per vertex of B: the position of its image on A
   MapDistortion distortion_a_to_b, distortion_b_to_a;

@@ -200,6 +200,40 @@ std::vector<SurfacePoint> map_through_sphere(const std::vector<Vec3>& source_sph
   return points;
 }
 
+// Sphere directions of a point next to every corner of every input triangle
+// (3 t + k), moved by kCornerNudge towards the other two corners inside a
+// refined triangle of that input triangle incident to the corner (the map is
+// linear there); without one (zero-area input triangles), between the input
+// corners' own directions.
+constexpr double kCornerNudge = 1e-3;
+
+std::vector<Vec3> corner_directions(const TriangleMesh& mesh, const ConstrainedResult& map) {
+  const ParameterizedSurface surface = parameterized_surface(mesh, map);
+  const std::vector<Vec3>& sphere = surface.sphere;
+  std::vector<Vec3> directions(3 * mesh.triangles.size());
+  std::vector<char> found(directions.size(), 0);
+  const auto nudged = [](const Vec3& at, const Vec3& b, const Vec3& c) {
+    return Vec3((1 - 2 * kCornerNudge) * at + kCornerNudge * (b + c)).normalized();
+  };
+  for (std::size_t r = 0; r < map.triangles.size(); ++r) {
+    const int t = map.input_triangle[r];
+    const Triangle& refined = map.triangles[r];
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t slot = 3 * std::size_t(t) + std::size_t(k);
+        if (found[slot] || refined[j] != mesh.triangles[t][k]) continue;
+        directions[slot] = nudged(sphere[refined[j]], sphere[refined[(j + 1) % 3]], sphere[refined[(j + 2) % 3]]);
+        found[slot] = 1;
+      }
+  }
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k)
+      if (!found[3 * t + k]) {
+        const Triangle& c = mesh.triangles[t];
+        directions[3 * t + k] = nudged(map.sphere[c[k]], map.sphere[c[(k + 1) % 3]], map.sphere[c[(k + 2) % 3]]);
+      }
+  return directions;
+}
 
 // Lowers the symmetric distortion of the composed map (see MapOptimizer);
 // feature vertices stay on their common points.
@@ -341,13 +375,21 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
   stage = Clock::now();
   if (refit || optimize) {
     compose();
+  if (options.corner_images) result.a_corners_to_b = map_through_sphere(corner_directions(a, map_a), b, map_b, {}, threads);
     measure(result.composition_a_to_b, result.composition_b_to_a);
   }
   if (refit) {
-    // A's map again, now also consistent with B's (coarse to fine).
+    // A's map again, now also consistent with B's (coarse to fine), kept
+    // only if the map improves (it cannot for a copy of B, mapped exactly).
     const ParameterizedSurface pb = parameterized_surface(b, map_b);
     map_a = parameterize_to_locations(members[0], maps.feature_locations, options.sphere, slice(progress, 0.7, 0.8),
                                       ReferenceMap{&pb.surface, &pb.sphere, options.correspondence_weight});
+    compose();
+    MapDistortion forward, backward;
+    measure(forward, backward);
+    if (!(forward.symmetric_dirichlet + backward.symmetric_dirichlet <
+          result.composition_a_to_b.symmetric_dirichlet + result.composition_b_to_a.symmetric_dirichlet))
+      map_a = maps.members[0];
   }
   if (optimize) optimize_composition(a, map_a, b, map_b, result.features, options, slice(progress, 0.8, 0.95));
   result.steiner_a = int(map_a.steiner.size());
@@ -365,6 +407,7 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
   stage = Clock::now();
   if (progress && !progress(0.95, "locating vertices on the other mesh")) throw Cancelled();
   compose();
+  if (options.corner_images) result.a_corners_to_b = map_through_sphere(corner_directions(a, map_a), b, map_b, {}, threads);
   result.a_on_b = surface_positions(b, result.a_to_b);
   result.b_on_a = surface_positions(a, result.b_to_a);
   result.seconds_locate = seconds_since(stage);

@@ -114,6 +114,70 @@ TriangleMesh read_obj(const std::string& path, const std::string& text) {
   return mesh;
 }
 
+ObjAttributes read_obj_attributes(const std::string& path, const std::string& text) {
+  ObjAttributes attributes;
+  Lines lines(text);
+  std::string line;
+  int vertices = 0, faces = 0, faces_with_uvs = 0, first_face_without = 0, first_face_with = 0;
+  int first_colourless = 0, first_coloured = 0;
+  std::vector<int> polygon_uvs;
+  while (lines.next(line)) {
+    const auto t = tokens(line);
+    if (t[0] == "v") {
+      ++vertices;
+      if (t.size() >= 7) {
+        std::array<double, 3> c{};
+        if (!parse_double(t[4], c[0]) || !parse_double(t[5], c[1]) || !parse_double(t[6], c[2]))
+          malformed(path, lines.number(), "a vertex colour needs three numbers");
+        attributes.colors.push_back(c);
+        if (!first_coloured) first_coloured = lines.number();
+      } else if (!first_colourless) {
+        first_colourless = lines.number();
+      }
+    } else if (t[0] == "vt") {
+      std::array<double, 2> uv{};
+      if (t.size() < 2 || !parse_double(t[1], uv[0]) || (t.size() > 2 && !parse_double(t[2], uv[1])))
+        malformed(path, lines.number(), "texture coordinates need one or two numbers");
+      attributes.uvs.push_back(uv);
+    } else if (t[0] == "f" || t[0] == "fo") {
+      ++faces;
+      polygon_uvs.clear();
+      for (size_t i = 1; i < t.size(); ++i) {
+        const size_t slash = t[i].find('/');
+        if (slash == std::string_view::npos || slash + 1 >= t[i].size() || t[i][slash + 1] == '/') continue;
+        long long index = 0;
+        if (!parse_index(t[i].substr(slash + 1), index) || index == 0)
+          malformed(path, lines.number(), "bad texture coordinate index in '" + std::string(t[i]) + "'");
+        const long long resolved = index > 0 ? index - 1 : (long long)attributes.uvs.size() + index;
+        if (resolved < 0 || resolved >= (long long)attributes.uvs.size())
+          malformed(path, lines.number(), "texture coordinate " + std::to_string(index) + " does not exist (" +
+                                              std::to_string(attributes.uvs.size()) + " so far)");
+        polygon_uvs.push_back(int(resolved));
+      }
+      if (t.size() < 4) malformed(path, lines.number(), "a face needs at least three vertices");
+      if (polygon_uvs.empty()) {
+        if (!first_face_without) first_face_without = lines.number();
+        continue;
+      }
+      if (polygon_uvs.size() != t.size() - 1)
+        malformed(path, lines.number(), "some corners of the face have texture coordinates and some not");
+      ++faces_with_uvs;
+      if (!first_face_with) first_face_with = lines.number();
+      for (size_t i = 1; i + 1 < polygon_uvs.size(); ++i)  // the fan of read_obj
+        attributes.triangle_uvs.push_back({polygon_uvs[0], polygon_uvs[i], polygon_uvs[i + 1]});
+    }
+  }
+  if (faces_with_uvs > 0 && faces_with_uvs < faces)
+    malformed(path, first_face_without,
+              "the face has no texture coordinates but the face on line " + std::to_string(first_face_with) +
+                  " has; give every face texture coordinates or none");
+  if (!attributes.colors.empty() && int(attributes.colors.size()) < vertices)
+    malformed(path, first_colourless,
+              "the vertex has no colour but the vertex on line " + std::to_string(first_coloured) +
+                  " has; give every vertex a colour or none");
+  return attributes;
+}
+
 TriangleMesh read_off(const std::string& path, const std::string& text) {
   TriangleMesh mesh;
   Lines lines(text);
