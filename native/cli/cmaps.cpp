@@ -71,8 +71,9 @@ commands:
            DIR/<k>.normals.npy and DIR/remesh_features.json (name -> remesh
            vertex). Nothing is written unless the whole computation succeeds.
   intersurface
-           map two closed meshes of the same genus (genus 0 for now) onto each
-           other, each feature of A exactly onto its partner on B. Writes
+           map two closed meshes of the same genus onto each other (genus 0
+           through a common sphere, genus >= 1 through a consistent partition
+           into patches), each feature of A exactly onto its partner on B. Writes
            DIR/A_to_B.txt and DIR/B_to_A.txt (one line per source vertex: the
            target triangle index in the target's input triangle order, then
            three barycentric weights) and DIR/A_on_B.obj, DIR/B_on_A.obj (the
@@ -795,7 +796,10 @@ void run_intersurface(const Arguments& args, Outcome& out) {
   out.json.add("genus", result.genus)
       .add_json("degenerate", JsonObject::array(std::vector<int>{ab.degenerate, ba.degenerate}))
       .add("sphere_flipped", result.sphere_flipped)
+      .add("base_vertices", result.base_vertices)
+      .add("base_triangles", result.base_triangles)
       .add("seconds_features", result.seconds_features)
+      .add("seconds_partition", result.seconds_partition)
       .add("seconds_parameterize", result.seconds_parameterize)
       .add("seconds_locate", result.seconds_locate)
       .add("seconds_measure", result.seconds_measure)
