@@ -8,6 +8,7 @@
 
 #include "common/parallel_for.h"
 #include "consistent_maps/errors.h"
+#include "intersurface/patch_locator.h"
 
 namespace cmaps {
 namespace {
@@ -95,66 +96,6 @@ std::unordered_map<int, Vec2> parameterize(const PartitionSide& side, const Base
   for (const auto& [v, i] : index) uv[v] = x.row(i).transpose();
   return uv;
 }
-
-// Barycentric coordinates of p in the 2D triangle (a, b, c).
-std::array<double, 3> barycentric(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
-  const double det = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
-  if (std::abs(det) < 1e-300) return {-1, -1, -1};
-  const double s = ((p - a).x() * (c - a).y() - (p - a).y() * (c - a).x()) / det;
-  const double t = ((b - a).x() * (p - a).y() - (b - a).y() * (p - a).x()) / det;
-  return {1 - s - t, s, t};
-}
-
-// Point location among one patch's triangles in the canonical triangle (a grid of buckets).
-class PatchLocator {
- public:
-  PatchLocator(const PartitionSide& side, const std::unordered_map<int, Vec2>& uv, const std::vector<int>& faces)
-      : side_(side), uv_(uv), faces_(faces) {
-    cells_ = std::max(1, int(std::sqrt(double(faces.size()))));
-    buckets_.resize(cells_ * cells_);
-    for (int f : faces) {
-      Vec2 lo(1e300, 1e300), hi(-1e300, -1e300);
-      for (int v : side.mesh.triangles()[f]) lo = lo.cwiseMin(uv.at(v)), hi = hi.cwiseMax(uv.at(v));
-      const auto [x0, y0] = cell(lo);
-      const auto [x1, y1] = cell(hi);
-      for (int x = x0; x <= x1; ++x)
-        for (int y = y0; y <= y1; ++y) buckets_[y * cells_ + x].push_back(f);
-    }
-  }
-
-  // The triangle holding p (the one it is least outside of) and p's barycentric weights there.
-  std::pair<int, std::array<double, 3>> locate(const Vec2& p) const {
-    const auto [x, y] = cell(p);
-    std::pair<int, std::array<double, 3>> best{-1, {}};
-    double score = -1e300;
-    const auto test = [&](int f) {
-      const Triangle& t = side_.mesh.triangles()[f];
-      const auto w = barycentric(p, uv_.at(t[0]), uv_.at(t[1]), uv_.at(t[2]));
-      const double m = std::min({w[0], w[1], w[2]});
-      if (m > score) score = m, best = {f, w};
-    };
-    for (int f : buckets_[y * cells_ + x]) test(f);
-    if (score < -1e-9)
-      for (int f : faces_) test(f);
-    if (best.first < 0) throw Error("internal error: point outside every patch triangle");
-    double sum = 0;
-    for (double& w : best.second) sum += (w = std::max(0.0, w));
-    for (double& w : best.second) w = sum > 0 ? w / sum : 1.0 / 3;
-    return best;
-  }
-
- private:
-  std::pair<int, int> cell(const Vec2& p) const {
-    const auto clamp = [&](double t) { return std::clamp(int(t * cells_), 0, cells_ - 1); };
-    return {clamp(p.x()), clamp(p.y() / kCorner[2].y())};
-  }
-
-  const PartitionSide& side_;
-  const std::unordered_map<int, Vec2>& uv_;
-  const std::vector<int>& faces_;
-  int cells_ = 1;
-  std::vector<std::vector<int>> buckets_;
-};
 
 // A point of the refined target (triangle, weights) on its input triangle.
 InputLocation to_input(const PartitionSide& side, const TriangleMesh& input, int face, const std::array<double, 3>& w) {
