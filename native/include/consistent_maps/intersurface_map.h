@@ -57,6 +57,7 @@ struct SurfacePoint {
 struct IntersurfaceOptions {
   SphereOptions sphere;  // seed, effort, threads of the underlying parameterizations
   int grid = 64;         // genus 0: octahedral grid of the consistent parameterization (even)
+  int optimization_sweeps = 20;  // genus >= 1: sweeps of local optimization of the map (0: none)
 };
 
 // Distortion of the map sampled at the vertices: each triangle of the source
@@ -96,8 +97,8 @@ struct IntersurfaceResult {
   // Wall time per stage: unconstrained maps for added features (genus 0),
   // the consistent partition (genus >= 1), the consistent or patch
   // parameterization, point location and conversion, measures.
-  double seconds_features = 0, seconds_partition = 0, seconds_parameterize = 0, seconds_locate = 0,
-         seconds_measure = 0, seconds = 0;
+  double seconds_features = 0, seconds_partition = 0, seconds_parameterize = 0, seconds_optimize = 0,
+         seconds_locate = 0, seconds_measure = 0, seconds = 0;
 };
 
 // Throws TopologyError for a mesh that is not one closed, manifold,

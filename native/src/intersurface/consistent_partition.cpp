@@ -20,6 +20,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kMidpointPenalty = 1.0;  // a step through an edge midpoint costs 1 + this times its length
 constexpr int kNearest = 10;              // tree candidates: each feature's nearest features
 constexpr int kJoinAttempts = 40;         // corner pairs tried to join two boundary walks
+constexpr int kDiagonalAttempts = 8;      // nearest corner pairs traced to split a face (the shortest is laid)
 
 // One end of a path: `end` 0 at its first vertex, 1 at its last.
 struct End {
@@ -310,11 +311,25 @@ class Partitioner {
   // Traces a path between features i and j on A, then on B through the
   // sectors it used on A; lays both. False when either has no path.
   bool connect(int i, int j, const Attach& at_i, const Attach& at_j) {
+    Traced traced;
+    if (!trace(i, j, at_i, at_j, traced)) return false;
+    lay(i, j, traced);
+    return true;
+  }
+
+  // A corresponding pair of traced node sequences (search nodes as in mesh_search.h).
+  struct Traced {
     std::vector<int> nodes[2];
-    int vertices[2];
+    int vertices[2] = {0, 0};
+    double length = 0;  // summed, size-normalized
+  };
+
+  bool trace(int i, int j, const Attach& at_i, const Attach& at_j, Traced& traced) const {
+    std::vector<int>* nodes = traced.nodes;
+    int* vertices = traced.vertices;
     End used_i, used_j;  // the sectors on A, for kMatch
     for (int s = 0; s < 2; ++s) {
-      Side& side = sides_[s];
+      const Side& side = sides_[s];
       const std::vector<End> around_i = side.ends(i, edges_), around_j = side.ends(j, edges_);
       const auto rule = [&](const Attach& at, const End& used) -> std::pair<bool, End> {
         if (at.mode == Attach::kFree || (at.mode == Attach::kMatch && s == 0)) return {false, {}};
@@ -336,10 +351,15 @@ class Partitioner {
         }
       }
       if (nodes[s].empty()) return false;
+      traced.length += path_length(side.mesh, nodes[s], vertices[s]) / scale_[s];
     }
-    for (int s = 0; s < 2; ++s) sides_[s].lay(nodes[s], vertices[s]);
-    edges_.push_back({i, j});
     return true;
+  }
+
+  void lay(int i, int j, const Traced& traced) {
+    const std::vector<int>* nodes = traced.nodes;
+    for (int s = 0; s < 2; ++s) sides_[s].lay(nodes[s], traced.vertices[s]);
+    edges_.push_back({i, j});
   }
 
   // Phase 1: a spanning tree of the features.
@@ -466,24 +486,28 @@ class Partitioner {
         std::vector<char> tree(edges, 0), cotree(edges, 0);
         for (int v = 0; v < side.mesh.vertex_count(); ++v)
           if (parent[v] >= 0) tree[side.mesh.edge(v, parent[v])] = 1;
+        // Cotree: a spanning tree of the faces across non-path, non-tree
+        // edges, those with a path vertex first, so that as few edges between
+        // free vertices as possible are used up (Kruskal with weights 0 / 1).
         const int faces = int(side.mesh.triangles().size());
-        std::vector<char> reached(faces, 0);
-        std::vector<int> queue{0};
-        reached[0] = 1;
-        for (size_t q = 0; q < queue.size(); ++q) {
-          const Triangle& t = side.mesh.triangles()[queue[q]];
-          for (int k = 0; k < 3; ++k) {
-            const int e = side.mesh.edge(t[k], t[(k + 1) % 3]);
-            if (tree[e] || side.path_edges.count(e)) continue;
+        std::vector<int> group(faces);
+        std::iota(group.begin(), group.end(), 0);
+        const std::function<int(int)> find = [&](int x) {
+          while (group[x] != x) x = group[x] = group[group[x]];
+          return x;
+        };
+        for (int interior = 0; interior < 2; ++interior)
+          for (int e = 0; e < edges; ++e) {
+            const auto [u, w] = side.mesh.edge_vertices(e);
+            if (u < 0 || tree[e] || side.path_edges.count(e)) continue;
+            if ((!side.blocked[u] && !side.blocked[w]) != bool(interior)) continue;
             const auto& two = side.mesh.edge_faces(e);
-            const int g = two[0] == queue[q] ? two[1] : two[0];
-            if (!reached[g]) {
-              reached[g] = 1;
+            const int x = find(two[0]), y = find(two[1]);
+            if (x != y) {
+              group[x] = y;
               cotree[e] = 1;
-              queue.push_back(g);
             }
           }
-        }
         std::vector<int> depth(side.mesh.vertex_count(), -1);
         const auto depth_of = [&](int v) {
           std::vector<int> chain;
@@ -628,8 +652,9 @@ class Partitioner {
   // Phase 3: a new feature pair in every face that is not a triangle of three
   // distinct features, joined to each corner of its walk in order.
   void complete() {
+    const int limit = 8 * int(edges_.size()) + 64;  // each round adds a path; a face of m corners needs m - 3
     for (int round = 0;; ++round) {
-      if (round > 8) throw Error("could not complete the partition to triangles");
+      if (round > limit) throw Error("could not complete the partition to triangles");
       std::vector<Walk> todo;
       for (const Walk& w : walks()) {
         std::vector<int> f;
@@ -639,6 +664,7 @@ class Partitioner {
       }
       if (todo.empty()) return;
       for (const Walk& walk : todo) {
+        if (diagonal(walk)) continue;
         const std::vector<End>& corner_ends = walk.after;
         int v[2];
         for (int s = 0; s < 2; ++s) {
@@ -652,6 +678,35 @@ class Partitioner {
             throw Error("could not join a new feature to the corners of its face");
       }
     }
+  }
+
+  // The shortest-looking path between two non-adjacent corners of distinct
+  // features of a face, inside it: splits it into two smaller faces.
+  bool diagonal(const Walk& walk) {
+    const int m = int(walk.corners.size());
+    std::vector<std::pair<double, std::array<int, 2>>> candidates;
+    for (int i = 0; i < m; ++i)
+      for (int j = i + 2; j < m; ++j) {
+        if ((i + m - j) < 2 || walk.corners[i].feature == walk.corners[j].feature) continue;
+        candidates.push_back({cost(walk.corners[i].feature, walk.corners[j].feature), {i, j}});
+      }
+    std::sort(candidates.begin(), candidates.end(), [](const auto& p, const auto& q) { return p.first < q.first; });
+    // Of the nearest few, the shortest traced pair.
+    Traced best;
+    std::array<int, 2> chosen{-1, -1};
+    for (int n = 0; n < int(candidates.size()) && n < kDiagonalAttempts; ++n) {
+      const auto [i, j] = candidates[n].second;
+      Traced traced;
+      if (trace(walk.corners[i].feature, walk.corners[j].feature, {Attach::kFixed, walk.after[i]},
+                {Attach::kFixed, walk.after[j]}, traced) &&
+          (chosen[0] < 0 || traced.length < best.length)) {
+        best = std::move(traced);
+        chosen = {i, j};
+      }
+    }
+    if (chosen[0] < 0) return false;
+    lay(walk.corners[chosen[0]].feature, walk.corners[chosen[1]].feature, best);
+    return true;
   }
 
   ConsistentPartition assemble() {

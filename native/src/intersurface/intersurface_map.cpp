@@ -17,6 +17,7 @@
 #include "consistent_maps/mesh_check.h"
 #include "consistent_maps/sphere_locator.h"
 #include "intersurface/consistent_partition.h"
+#include "intersurface/map_optimization.h"
 #include "intersurface/patch_parameterization.h"
 
 namespace cmaps {
@@ -238,9 +239,15 @@ void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, Intersurf
 
   stage = Clock::now();
   if (progress && !progress(0.6, "parameterizing patches")) throw Cancelled();
-  const PatchParameterization uv_a = parameterize_patches(partition.sides[0], partition);
+  PatchParameterization uv_a = parameterize_patches(partition.sides[0], partition);
   const PatchParameterization uv_b = parameterize_patches(partition.sides[1], partition);
   result.seconds_parameterize = seconds_since(stage);
+
+  stage = Clock::now();
+  if (progress && !progress(0.7, "optimizing the map")) throw Cancelled();
+  optimize_patch_map(partition.sides[0], uv_a, partition.sides[1], uv_b, options.optimization_sweeps,
+                     options.sphere.threads);
+  result.seconds_optimize = seconds_since(stage);
 
   stage = Clock::now();
   if (progress && !progress(0.8, "locating vertices on the other mesh")) throw Cancelled();
