@@ -801,6 +801,7 @@ void run_intersurface(const Arguments& args, Outcome& out) {
       .add("seconds_features", result.seconds_features)
       .add("seconds_partition", result.seconds_partition)
       .add("seconds_parameterize", result.seconds_parameterize)
+      .add("seconds_optimize", result.seconds_optimize)
       .add("seconds_locate", result.seconds_locate)
       .add("seconds_measure", result.seconds_measure)
       .add("seconds_compute", result.seconds)

@@ -557,6 +557,7 @@ py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, co
   d["seconds_features"] = result.seconds_features;
   d["seconds_partition"] = result.seconds_partition;
   d["seconds_parameterize"] = result.seconds_parameterize;
+  d["seconds_optimize"] = result.seconds_optimize;
   d["seconds_locate"] = result.seconds_locate;
   d["seconds_measure"] = result.seconds_measure;
   return d;
