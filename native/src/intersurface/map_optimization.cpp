@@ -14,6 +14,10 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr int kHalvings = 10;         // line search: step, step / 2, ...
 constexpr double kFlipPenalty = 1e6;  // energy density of an image triangle facing against the surface there
+// A vertex whose ring holds more target vertices than this stays where it is:
+// each trial re-maps all of them (such rings lie where the target is
+// compressed most, e.g. between unrelated feature pairs).
+constexpr int kMaxRemapped = 256;
 
 double surface_area(const PartitionSide& side) {
   double area = 0;
@@ -120,6 +124,12 @@ class PatchEnergy {
 
   // One descent step of vertex v: normalized gradient (central differences), halving line search.
   bool improve(int v) {
+    std::size_t inside = 0;
+    for (int f : source_.mesh.faces_of(v)) {
+      const auto it = host_.find(f);
+      if (it != host_.end()) inside += it->second.size();
+    }
+    if (inside > kMaxRemapped) return false;
     const Vec2 u0 = uv_.at(v);
     Move current = trial(v, u0);
     if (!std::isfinite(current.energy)) return false;
