@@ -76,8 +76,9 @@ commands:
            DIR/<k>.normals.npy and DIR/remesh_features.json (name -> remesh
            vertex). Nothing is written unless the whole computation succeeds.
   intersurface
-           map two closed meshes of the same genus (genus 0 for now) onto each
-           other, each feature of A exactly onto its partner on B. Writes
+           map two closed meshes of the same genus onto each other (genus 0
+           through a common sphere, genus >= 1 through a consistent partition
+           into patches), each feature of A exactly onto its partner on B. Writes
            DIR/A_to_B.txt and DIR/B_to_A.txt (one line per source vertex: the
            target triangle index in the target's input triangle order, then
            three barycentric weights) and DIR/A_on_B.obj, DIR/B_on_A.obj (the
@@ -832,10 +833,13 @@ void run_intersurface(const Arguments& args, Outcome& out) {
   out.json.add("genus", result.genus)
       .add_json("degenerate", JsonObject::array(std::vector<int>{ab.degenerate, ba.degenerate}))
       .add("sphere_flipped", result.sphere_flipped)
+      .add("base_vertices", result.base_vertices)
+      .add("base_triangles", result.base_triangles)
       .add("seconds_features", result.seconds_features)
       .add_json("composition_dirichlet",
                 JsonObject::array(std::vector<double>{result.composition_a_to_b.symmetric_dirichlet,
                                                       result.composition_b_to_a.symmetric_dirichlet}))
+      .add("seconds_partition", result.seconds_partition)
       .add("seconds_parameterize", result.seconds_parameterize)
       .add("seconds_optimize", result.seconds_optimize)
       .add("seconds_locate", result.seconds_locate)

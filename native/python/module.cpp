@@ -556,9 +556,12 @@ py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, co
   d["stretch_efficiency"] = py::make_tuple(result.efficiency_a, result.efficiency_b);
   d["steiner"] = py::make_tuple(result.steiner_a, result.steiner_b);
   d["seconds"] = seconds;
+  d["base_vertices"] = result.base_vertices;
+  d["base_triangles"] = result.base_triangles;
   d["seconds_features"] = result.seconds_features;
   d["composition_dirichlet"] = py::make_tuple(result.composition_a_to_b.symmetric_dirichlet,
                                               result.composition_b_to_a.symmetric_dirichlet);
+  d["seconds_partition"] = result.seconds_partition;
   d["seconds_parameterize"] = result.seconds_parameterize;
   d["seconds_optimize"] = result.seconds_optimize;
   d["seconds_locate"] = result.seconds_locate;
@@ -949,8 +952,9 @@ PYBIND11_MODULE(_native, m) {
         py::arg("feature_pairs") = py::list(), py::kw_only(), py::arg("grid") = 64, py::arg("optimize") = 2,
         py::arg("seed") = 1,
         py::arg("effort") = 1, py::arg("threads") = 2, py::arg("progress") = py::none(),
-        "Inter-surface map between two closed meshes of equal genus (genus 0 for now: through a consistent\n"
-        "spherical parameterization of both). mesh_a, mesh_b: (vertices, triangles); feature_pairs: (k, 2)\n"
+        "Inter-surface map between two closed meshes of equal genus (genus 0: through a consistent spherical\n"
+        "parameterization of both; genus >= 1: through a consistent partition into triangular patches,\n"
+        "'base_vertices' and 'base_triangles' of its base mesh, 'seconds_partition'). mesh_a, mesh_b: (vertices, triangles); feature_pairs: (k, 2)\n"
         "[vertex of A, vertex of B], mapped exactly onto each other (fewer than 3: pairs are added\n"
         "automatically up to 4). Returns a dict: 'a_to_b_triangle' (nA,) int32 and 'a_to_b_barycentric'\n"
         "(nA, 3): each vertex of A on an input triangle of B with weights w.r.t. its corners; likewise\n"
@@ -958,8 +962,9 @@ PYBIND11_MODULE(_native, m) {
         "used (given, then added), 'added_features'; per direction (A to B, B to A) 'symmetric_dirichlet'\n"
         "(area-normalized, optimum 4, each source triangle mapped linearly onto its corners' images),\n"
         "'flipped', 'degenerate', and 'composition_dirichlet' before the distortion optimization (optimize:\n"
-        "its rounds, 0 = the plain composition of the spherical maps); 'sphere_flipped',\n"
-        "'stretch_efficiency' and 'steiner' of the two spherical maps; 'seconds' and per stage. Raises InvalidMeshError for different genus, genus > 0,\n"
+        "its rounds, 0 = no optimization: for genus 0 the plain composition of the spherical maps);\n"
+        "'sphere_flipped', 'stretch_efficiency' and 'steiner' of the two spherical maps (genus 0);\n"
+        "'seconds' and per stage. Raises InvalidMeshError for different genus,\n"
         "non-manifold meshes or bad pairs, Cancelled when progress returns False.");
   m.def("consistent_remesh", &consistent_remesh, py::arg("surfaces"), py::arg("feature_locations"), py::arg("n"),
         py::kw_only(), py::arg("threads") = 2,

@@ -26,8 +26,16 @@
 // features still gets a valid, bijective map, only with an arbitrary
 // correspondence where nothing constrains it.
 //
-// Genus 1 and higher (the direct method of Schreiner et al. 2004 behind the
-// same interface) is the next milestone: such pairs are refused for now.
+// Genus 1 and higher: a direct map from a consistent partition (thesis 5.4,
+// Schreiner et al. 2004). Corresponding path networks between the feature
+// pairs cut both meshes into triangular patches of identical connectivity
+// (features are added automatically where the partition needs them); each
+// patch and its partner are parameterized onto one canonical triangle
+// (boundary by arc length, interior by a convex-combination embedding), and
+// a vertex of A maps to the point of B with the same canonical coordinates.
+// Continuous and bijective; not yet optimized for distortion (no
+// progressive-mesh refinement). With zero pairs, one pair is chosen: the
+// vertex farthest from the mesh's centroid on each mesh.
 #pragma once
 #include <array>
 #include <vector>
@@ -65,7 +73,8 @@ struct IntersurfaceOptions {
   // the result is the plain composition.
   double correspondence_weight = 0.25;
   // Also map every triangle corner of A (IntersurfaceResult::a_corners_to_b),
-  // for transferring per-corner values such as texture coordinates.
+  // for transferring per-corner values such as texture coordinates (genus 0
+  // only for now: InvalidInput otherwise).
   bool corner_images = false;
 };
 
@@ -100,26 +109,32 @@ struct IntersurfaceResult {
   std::vector<FeaturePair> features;  // the pairs used: the given ones, then any added automatically
   int added_features = 0;             // how many of `features` were added
   int genus = 0;
+  // Genus >= 1: the base triangulation (all its vertices, including added
+  // ones that are Steiner vertices and so not listed in `features`).
+  int base_vertices = 0, base_triangles = 0;
   // Genus 0: the two spherical maps after optimization (their stretch
   // efficiency, flipped chordal triangles, Steiner vertices inserted on each
   // mesh) and the distortion of the plain composition of the consistent
-  // parameterization's two maps.
+  // parameterization's two maps (genus >= 1: the final distortion); genus
+  // >= 1: the Steiner vertices of the partition and its patches' refinement.
   double efficiency_a = 0, efficiency_b = 0;
   int sphere_flipped = 0;
   int steiner_a = 0, steiner_b = 0;
   MapDistortion composition_a_to_b, composition_b_to_a;
-  // Wall time per stage: unconstrained maps for added features, the
-  // consistent parameterization, the distortion optimization, point location
-  // and conversion, measures.
-  double seconds_features = 0, seconds_parameterize = 0, seconds_optimize = 0, seconds_locate = 0,
-         seconds_measure = 0, seconds = 0;
+  // Wall time per stage: unconstrained maps for added features (genus 0),
+  // the consistent partition (genus >= 1), the consistent or patch
+  // parameterization, the distortion optimization, point location and
+  // conversion, measures.
+  double seconds_features = 0, seconds_partition = 0, seconds_parameterize = 0, seconds_optimize = 0,
+         seconds_locate = 0, seconds_measure = 0, seconds = 0;
 };
 
 // Throws TopologyError for a mesh that is not one closed, manifold,
 // consistently oriented surface (naming A or B), for meshes of different
 // genus ("A has genus 1, B has genus 2; an inter-surface map needs equal
-// genus") and, for now, for genus 1 and higher; InvalidInput for a feature
-// vertex out of range or used by two pairs; Cancelled when `progress` says so.
+// genus"); InvalidInput for a feature vertex out of range or used by two
+// pairs; Error when a genus >= 1 partition gets stuck; Cancelled when
+// `progress` says so.
 IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b,
                                     const std::vector<FeaturePair>& features,
                                     const IntersurfaceOptions& options = {},

@@ -1,5 +1,6 @@
-// Inter-surface maps (issue 5), genus 0: the composition of two consistent
-// spherical parameterizations. See intersurface_map.h.
+// Inter-surface maps (issue 5): genus 0 by the composition of two consistent
+// spherical parameterizations, genus >= 1 through a consistent partition
+// into patches. See intersurface_map.h.
 #include "consistent_maps/intersurface_map.h"
 
 #include <Eigen/SVD>
@@ -18,8 +19,11 @@
 #include "consistent_maps/sphere_locator.h"
 #include "consistent/parameterize_with_reference.h"
 #include "consistent_maps/stretch_metric.h"
-#include "intersurface/map_optimizer.h"
+#include "intersurface/sphere_map_optimizer.h"
 #include "intersurface/symmetric_dirichlet.h"
+#include "intersurface/consistent_partition.h"
+#include "intersurface/patch_map_optimization.h"
+#include "intersurface/patch_parameterization.h"
 
 namespace cmaps {
 namespace {
@@ -257,6 +261,76 @@ void optimize_composition(const TriangleMesh& a, ConstrainedResult& map_a, const
   }
 }
 
+// The vertex farthest from the centroid: the automatic feature of a mesh.
+int farthest_from_centroid(const TriangleMesh& mesh) {
+  Vec3 centroid = Vec3::Zero();
+  for (const Vec3& v : mesh.vertices) centroid += v;
+  centroid /= double(mesh.vertices.size());
+  int best = 0;
+  for (int v = 1; v < int(mesh.vertices.size()); ++v)
+    if ((mesh.vertices[v] - centroid).squaredNorm() > (mesh.vertices[best] - centroid).squaredNorm()) best = v;
+  return best;
+}
+
+// Genus >= 1: the direct map through a consistent partition.
+void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResult& result,
+                         const IntersurfaceOptions& options, const ProgressCallback& progress) {
+  auto stage = Clock::now();
+  const int given = int(result.features.size());
+  std::vector<std::array<int, 2>> pairs;
+  for (const FeaturePair& f : result.features) pairs.push_back({f.a, f.b});
+  if (pairs.empty()) pairs.push_back({farthest_from_centroid(a), farthest_from_centroid(b)});
+  result.seconds_features = seconds_since(stage);
+
+  // Paths keep cyclic orders by each mesh's own orientation: B is turned
+  // like A first (its input triangle indices stay, only corner order flips).
+  stage = Clock::now();
+  if (progress && !progress(0.05, "partitioning")) throw Cancelled();
+  TriangleMesh b_like_a = b;
+  if (signed_volume(a) * signed_volume(b) < 0)
+    for (Triangle& t : b_like_a.triangles) std::swap(t[1], t[2]);
+  ConsistentPartition partition = consistent_partition(a, b_like_a, pairs, result.genus);
+  result.seconds_partition = seconds_since(stage);
+
+  stage = Clock::now();
+  if (progress && !progress(0.6, "parameterizing patches")) throw Cancelled();
+  PatchParameterization uv_a = parameterize_patches(partition.sides[0], partition);
+  const PatchParameterization uv_b = parameterize_patches(partition.sides[1], partition);
+  result.seconds_parameterize = seconds_since(stage);
+
+  stage = Clock::now();
+  if (progress && !progress(0.7, "optimizing the map")) throw Cancelled();
+  optimize_patch_map(partition.sides[0], uv_a, partition.sides[1], uv_b,
+                     options.optimize_rounds > 0 ? options.optimize_sweeps : 0,
+                     options.sphere.threads);
+  result.seconds_optimize = seconds_since(stage);
+
+  stage = Clock::now();
+  if (progress && !progress(0.8, "locating vertices on the other mesh")) throw Cancelled();
+  const int threads = options.sphere.threads;
+  const auto convert = [](const std::vector<InputLocation>& located) {
+    std::vector<SurfacePoint> points(located.size());
+    for (std::size_t i = 0; i < located.size(); ++i) points[i] = {located[i].triangle, located[i].barycentric};
+    return points;
+  };
+  result.a_to_b = convert(map_vertices(partition.sides[0], uv_a, partition.sides[1], uv_b, b, threads));
+  result.b_to_a = convert(map_vertices(partition.sides[1], uv_b, partition.sides[0], uv_a, a, threads));
+  result.a_on_b = surface_positions(b, result.a_to_b);
+  result.b_on_a = surface_positions(a, result.b_to_a);
+  result.seconds_locate = seconds_since(stage);
+
+  const std::vector<int>&fa = partition.sides[0].feature_vertex, &fb = partition.sides[1].feature_vertex;
+  result.features.clear();
+  for (std::size_t k = 0; k < fa.size(); ++k)
+    if (int(k) < given || (fa[k] < int(a.vertices.size()) && fb[k] < int(b.vertices.size())))
+      result.features.push_back({fa[k], fb[k]});
+  result.added_features = int(result.features.size()) - given;
+  result.base_vertices = int(fa.size());
+  result.base_triangles = int(partition.triangles.size());
+  result.steiner_a = partition.sides[0].mesh.vertex_count() - int(a.vertices.size());
+  result.steiner_b = partition.sides[1].mesh.vertex_count() - int(b.vertices.size());
+}
+
 }  // namespace
 
 std::vector<Vec3> surface_positions(const TriangleMesh& target, const std::vector<SurfacePoint>& points) {
@@ -320,9 +394,24 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
   if (genus_a != genus_b)
     throw TopologyError("A has genus " + std::to_string(genus_a) + ", B has genus " + std::to_string(genus_b) +
                         "; an inter-surface map needs equal genus");
-  if (genus_a > 0)
-    throw TopologyError("A and B have genus " + std::to_string(genus_a) +
-                        "; inter-surface maps of genus 1 and higher are not implemented yet (genus 0 only)");
+  check_features(features, a, b);
+  IntersurfaceResult result;
+  result.genus = genus_a;
+  result.features = features;
+  if (genus_a > 0) {
+    if (options.corner_images)
+      throw InvalidInput("A and B have genus " + std::to_string(genus_a) +
+                         ": images of triangle corners (per-corner values such as texture coordinates) are only "
+                         "mapped for genus 0 so far");
+    map_through_patches(a, b, result, options, progress);
+    const auto stage = Clock::now();
+    result.distortion_a_to_b = result.composition_a_to_b = measure_intersurface_map(a, b, result.a_to_b);
+    result.distortion_b_to_a = result.composition_b_to_a = measure_intersurface_map(b, a, result.b_to_a);
+    result.seconds_measure = seconds_since(stage);
+    if (progress && !progress(1, "done")) throw Cancelled();
+    result.seconds = seconds_since(start);
+    return result;
+  }
   for (const auto& [mesh, name] : {std::pair<const TriangleMesh&, const char*>{a, "A"}, {b, "B"}}) {
     try {
       require_sphere_topology(mesh);
@@ -332,13 +421,8 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
       throw InvalidInput(std::string(name) + ": " + e.what());
     }
   }
-  check_features(features, a, b);
   if (options.grid < 2 || options.grid % 2 != 0)
     throw InvalidInput("grid must be even and at least 2, got " + std::to_string(options.grid));
-
-  IntersurfaceResult result;
-  result.genus = genus_a;
-  result.features = features;
 
   // Too few pairs for a constrained map: add some from the aligned unconstrained maps.
   auto stage = Clock::now();

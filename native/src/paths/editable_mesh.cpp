@@ -79,7 +79,7 @@ int EditableMesh::split_edge(int e) {
     for (int k = 0; k < 3; ++k)
       if (origins_[v].vertices[k] >= 0) combination[origins_[v].vertices[k]] += 0.5 * origins_[v].weights[k];
   if (combination.size() > 3) throw Error("internal error: Steiner vertex outside one input triangle");
-  SurfacePoint point;
+  InputPoint point;
   int slot = 0;
   for (const auto& [vertex, weight] : combination) {
     point.vertices[slot] = vertex;

@@ -11,7 +11,7 @@
 
 namespace cmaps {
 
-struct SurfacePoint {
+struct InputPoint {
   std::array<int, 3> vertices{-1, -1, -1};  // input vertices (-1 = unused slot)
   std::array<double, 3> weights{0, 0, 0};   // barycentric weights, summing to 1
 };
@@ -32,7 +32,7 @@ class EditableMesh {
   const std::array<int, 2>& edge_faces(int e) const { return edge_faces_[e]; }
   int edge(int a, int b) const;  // -1 when a and b are not adjacent
   std::vector<int> ring(int v) const;  // neighbours, counter-clockwise
-  const SurfacePoint& surface_point(int v) const { return origins_[v]; }
+  const InputPoint& surface_point(int v) const { return origins_[v]; }
   // The input triangle a triangle lies in (splits never cross input edges).
   int input_triangle(int f) const { return input_triangle_[f]; }
 
@@ -46,7 +46,7 @@ class EditableMesh {
 
   int input_vertices_;
   std::vector<Vec3> positions_;
-  std::vector<SurfacePoint> origins_;
+  std::vector<InputPoint> origins_;
   std::vector<Triangle> triangles_;
   std::vector<int> input_triangle_;
   std::vector<std::vector<int>> vertex_faces_;

@@ -63,7 +63,7 @@ int farthest_vertex(const std::vector<Vec3>& x, const std::vector<int>& chosen, 
   return best;
 }
 
-Vec3 on_surface(const SurfacePoint& p, const std::vector<Vec3>& vertices) {
+Vec3 on_surface(const InputPoint& p, const std::vector<Vec3>& vertices) {
   Vec3 x = Vec3::Zero();
   for (int s = 0; s < 3; ++s)
     if (p.vertices[s] >= 0) x += p.weights[s] * vertices[p.vertices[s]];
@@ -308,7 +308,7 @@ ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mes
   }
   result.sphere.assign(sphere.begin(), sphere.begin() + n);
   for (int v = nc; v < total; ++v) {
-    const SurfacePoint& p = editable.surface_point(v);
+    const InputPoint& p = editable.surface_point(v);
     for (int w : p.vertices)
       if (w >= n) throw Error("internal error: a Steiner vertex lies on a hole's temporary triangles");
     result.steiner.push_back({p.vertices, p.weights, sphere[v]});

@@ -1,4 +1,4 @@
-#include "intersurface/map_optimizer.h"
+#include "intersurface/sphere_map_optimizer.h"
 
 #include <Eigen/Dense>
 #include <algorithm>

@@ -1,0 +1,102 @@
+"""Inter-surface maps of genus >= 1 (issue 5): `cmaps intersurface` on pairs of equal genus from
+shared/meshes/higher-genus, plus a torus against a stretched, re-indexed copy of itself, where the
+true correspondence is known. Rewrites the `intersurface-genus-benchmark` section of BENCHMARKS.md.
+
+    python3 bench/intersurface_benchmark.py   (after building build/cmaps)
+"""
+import json
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from bench_common import MESHES, machine, run_cmaps, write_section
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "addon"))
+from consistent_maps import _native  # noqa: E402
+
+HIGHER = MESHES / "higher-genus"
+
+
+def axis_extremes(path):
+    """Four vertices of a mesh: lowest and highest along x, then along y (a deterministic rule, not semantic)."""
+    vertices = _native.read_mesh(str(path))[0]
+    return [int(vertices[:, 0].argmin()), int(vertices[:, 0].argmax()), int(vertices[:, 1].argmin()),
+            int(vertices[:, 1].argmax())]
+
+
+def write_features(directory, pairs):
+    path = Path(directory) / "features.json"
+    path.write_text(json.dumps({f"f{k}": [a, b] for k, (a, b) in enumerate(pairs)}))
+    return str(path)
+
+
+def stretched_torus(directory):
+    """The torus re-indexed and scaled by (1.5, 1, 0.7); returns its path and old -> new vertex index."""
+    vertices, triangles = _native.read_mesh(str(HIGHER / "torus.obj"))
+    new_index = np.random.default_rng(1).permutation(len(vertices))
+    moved = np.empty_like(vertices)
+    moved[new_index] = vertices * np.array([1.5, 1.0, 0.7])
+    path = Path(directory) / "torus_stretched.obj"
+    with open(path, "w") as f:
+        f.writelines(f"v {x:.17g} {y:.17g} {z:.17g}\n" for x, y, z in moved)
+        f.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in new_index[triangles])
+    return path, new_index, moved
+
+
+def row(name, result, note=""):
+    if result.get("error"):
+        return f"| {name} | {result['faces'][0]} / {result['faces'][1]} | | failed: {result['error']} |||||||{note} |"
+    given = result["features"]
+    added = len(result["added_features"])
+    return (f"| {name} | {result['faces'][0]} / {result['faces'][1]} | {given} (+{added} listed, "
+            f"{result['base_vertices']} base vertices) | {result['base_triangles']} | "
+            f"{result['steiner'][0]} / {result['steiner'][1]} | {result['seconds_partition']:.2f} | "
+            f"{result['seconds_parameterize'] + result['seconds_optimize'] + result['seconds_locate']:.2f} "
+            f"({result['seconds_optimize']:.2f} opt.) | {result['wall']:.1f} | "
+            f"{result['symmetric_dirichlet'][0]:.1f} / {result['symmetric_dirichlet'][1]:.1f} | "
+            f"{result['flipped'][0]} / {result['flipped'][1]} |{note} |")
+
+
+def main():
+    lines = [f"Measured {machine()} (machine shared with other work); `cmaps intersurface A B [--features FILE] "
+             "-o DIR --json`. Base vertices: all vertices of the base triangulation (given + added pairs; added "
+             "pairs that are Steiner vertices are not listed in `features`). Map seconds: patch "
+             "parameterization + local optimization + point location.", "",
+             "| pair | faces | features | base triangles | Steiner A / B | partition s | map s | total s | "
+             "symmetric Dirichlet A->B / B->A | flipped samples A->B / B->A | note |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
+    pairs = [("torus", "knot"), ("eight", "skull"), ("kitten", "rocker-arm"), ("kitten", "elk"),
+             ("cup", "skull")]
+    files = {p.stem: p for p in HIGHER.iterdir()}
+    with tempfile.TemporaryDirectory() as tmp:
+        for a, b in pairs:
+            result = run_cmaps("intersurface", str(files[a]), str(files[b]), "-o", tmp + "/out")
+            lines.append(row(f"{a} - {b}", result))
+            print(lines[-1], flush=True)
+        for a, b in [("feline", "cup"), ("feline", "skull")]:
+            features = write_features(tmp, zip(axis_extremes(files[a]), axis_extremes(files[b])))
+            result = run_cmaps("intersurface", str(files[a]), str(files[b]), "--features", features, "-o",
+                               tmp + "/out")
+            lines.append(row(f"{a} - {b}", result, " 4 axis-extreme pairs"))
+            print(lines[-1], flush=True)
+        # Ground truth: the torus against its stretched, re-indexed copy.
+        path, new_index, moved = stretched_torus(tmp)
+        diagonal = np.linalg.norm(moved.max(axis=0) - moved.min(axis=0))
+        for k in (0, 8, 16):
+            chosen = np.random.default_rng(5).choice(len(new_index), k, replace=False)
+            arguments = ["--features", write_features(tmp, [(int(v), int(new_index[v])) for v in chosen])] if k else []
+            result = run_cmaps("intersurface", str(HIGHER / "torus.obj"), str(path), *arguments, "-o", tmp + "/out")
+            if result.get("error"):
+                error = "failed"
+            else:
+                on_b = np.array([l.split()[1:4] for l in open(tmp + "/out/A_on_B.obj") if l.startswith("v ")], float)
+                error = f"{100 * np.linalg.norm(on_b - moved[new_index], axis=1).mean() / diagonal:.1f} %"
+            lines.append(row("torus - stretched copy", result, f" {k} true pairs; mean error {error} of the diagonal"))
+            print(lines[-1], flush=True)
+    write_section("intersurface-genus-benchmark", lines)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,777 @@
+#include "intersurface/consistent_partition.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <numeric>
+#include <queue>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "consistent_maps/errors.h"
+#include "paths/mesh_search.h"
+
+namespace cmaps {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kMidpointPenalty = 1.0;  // a step through an edge midpoint costs 1 + this times its length
+constexpr int kNearest = 10;              // tree candidates: each feature's nearest features
+constexpr int kJoinAttempts = 40;         // corner pairs tried to join two boundary walks
+constexpr int kDiagonalAttempts = 8;      // nearest corner pairs traced to split a face (the shortest is laid)
+
+// One end of a path: `end` 0 at its first vertex, 1 at its last.
+struct End {
+  int path = -1;
+  int end = 0;
+  bool operator==(const End& o) const { return path == o.path && end == o.end; }
+};
+
+// How a new path may attach at one of its features: anywhere on both meshes,
+// anywhere on A and through the corresponding sector on B, or in the sector
+// after a given end (counter-clockwise) on both.
+struct Attach {
+  enum Mode { kFree, kMatch, kFixed } mode = kMatch;
+  End after;
+};
+
+// A corner of a face: feature f, in the sector after the `index`-th end around it.
+struct Corner {
+  int feature = -1;
+  int index = -1;
+};
+
+struct Walk {
+  std::vector<Corner> corners;
+  std::vector<End> after;    // per corner: the end it follows (names it while ends are added elsewhere)
+  std::vector<End> leaving;  // per corner: the end through which the walk leaves it
+};
+
+class Side {
+ public:
+  explicit Side(const TriangleMesh& mesh) : mesh(mesh), blocked(this->mesh.vertex_count(), 0) {}
+
+  EditableMesh mesh;
+  std::vector<char> blocked;  // features and path vertices
+  std::unordered_set<int> path_edges;
+  std::vector<int> feature;
+  std::vector<std::vector<int>> paths;
+
+  void add_feature(int v) {
+    feature.push_back(v);
+    blocked[v] = 1;
+  }
+
+  int split(int e) {
+    const int m = mesh.split_edge(e);
+    blocked.push_back(0);
+    return m;
+  }
+
+  int first_step(const End& x) const {
+    const std::vector<int>& p = paths[x.path];
+    return x.end == 0 ? p[1] : p[p.size() - 2];
+  }
+
+  // The ends at feature f, counter-clockwise.
+  std::vector<End> ends(int f, const std::vector<std::array<int, 2>>& edges) const {
+    const std::vector<int> ring = mesh.ring(feature[f]);
+    std::unordered_map<int, int> at;
+    for (int k = 0; k < int(ring.size()); ++k) at[ring[k]] = k;
+    std::vector<std::pair<int, End>> found;
+    for (int p = 0; p < int(edges.size()); ++p)
+      for (int e = 0; e < 2; ++e)
+        if (edges[p][e] == f) found.push_back({at.at(first_step({p, e})), End{p, e}});
+    std::sort(found.begin(), found.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    std::vector<End> result;
+    for (const auto& item : found) result.push_back(item.second);
+    return result;
+  }
+
+  // Ring positions of f's search neighbours (as in path_network.cpp): ring
+  // vertex k at k, the midpoint of ring edge (k, k+1) at k + 0.5, the
+  // midpoint of the edge to ring vertex k at k.
+  Sector positions(int f, int vertices, bool midpoints) const {
+    Sector s;
+    const int v = feature[f];
+    const std::vector<int> ring = mesh.ring(v);
+    s.size = double(ring.size());
+    for (int k = 0; k < int(ring.size()); ++k) {
+      s.position[ring[k]] = k;
+      if (midpoints) {
+        s.position[vertices + mesh.edge(ring[k], ring[(k + 1) % ring.size()])] = k + 0.5;
+        s.position[vertices + mesh.edge(v, ring[k])] = k;
+      }
+    }
+    return s;
+  }
+
+  // The sector after end x at f (up to the next end counter-clockwise).
+  Sector after(int f, const End& x, const std::vector<End>& around, int vertices, bool midpoints) const {
+    Sector s = positions(f, vertices, midpoints);
+    if (x.path < 0 || around.empty()) return s;
+    const int i = int(std::find(around.begin(), around.end(), x) - around.begin());
+    if (i == int(around.size())) throw Error("internal error: end not found around its feature");
+    const std::vector<int> ring = mesh.ring(feature[f]);
+    const auto pos = [&](const End& e) { return double(std::find(ring.begin(), ring.end(), first_step(e)) - ring.begin()); };
+    s.everything = false;
+    s.lo = pos(x);
+    s.span = around.size() == 1 ? s.size : std::fmod(pos(around[(i + 1) % around.size()]) - s.lo + s.size, s.size);
+    return s;
+  }
+
+  // The end after which a path through search node `node` leaves f.
+  End gap_of(int f, int node, const std::vector<End>& around, int vertices, bool midpoints) const {
+    if (around.empty()) return {};
+    const Sector s = positions(f, vertices, midpoints);
+    const std::vector<int> ring = mesh.ring(feature[f]);
+    const double q = s.position.at(node);
+    End best = around.back();
+    for (const End& e : around)
+      if (double(std::find(ring.begin(), ring.end(), first_step(e)) - ring.begin()) < q) best = e;
+    return best;
+  }
+
+  std::vector<int> trace(int from, int to, const Sector* leave, const Sector* enter, bool midpoints) const {
+    SearchRules rules;
+    rules.blocked = &blocked;
+    rules.closed_edges = &path_edges;
+    rules.leave = leave;
+    rules.enter = enter;
+    rules.midpoints = midpoints;
+    rules.midpoint_penalty = kMidpointPenalty;
+    return shortest_path(mesh, feature[from], feature[to], rules);
+  }
+
+  // Turns a traced node sequence into mesh vertices (splitting the edges of
+  // midpoint nodes) and blocks it.
+  void lay(const std::vector<int>& nodes, int vertices) {
+    std::vector<int> path;
+    for (int node : nodes) path.push_back(node < vertices ? node : split(node - vertices));
+    register_path(connected(path, vertices));
+  }
+
+  void register_path(const std::vector<int>& path) {
+    for (size_t i = 0; i + 1 < path.size(); ++i) path_edges.insert(mesh.edge(path[i], path[i + 1]));
+    for (int v : path) blocked[v] = 1;
+    paths.push_back(path);
+  }
+
+  // Per triangle: its region (triangles connected across non-path edges).
+  std::vector<int> regions(int& count) const {
+    const int faces = int(mesh.triangles().size());
+    std::vector<int> region(faces, -1);
+    count = 0;
+    for (int seed = 0; seed < faces; ++seed) {
+      if (region[seed] >= 0) continue;
+      std::vector<int> stack{seed};
+      region[seed] = count;
+      while (!stack.empty()) {
+        const int f = stack.back();
+        stack.pop_back();
+        const Triangle& t = mesh.triangles()[f];
+        for (int k = 0; k < 3; ++k) {
+          const int e = mesh.edge(t[k], t[(k + 1) % 3]);
+          if (path_edges.count(e)) continue;
+          const auto& two = mesh.edge_faces(e);
+          const int g = two[0] == f ? two[1] : two[0];
+          if (region[g] < 0) {
+            region[g] = count;
+            stack.push_back(g);
+          }
+        }
+      }
+      ++count;
+    }
+    return region;
+  }
+
+  // A triangle in the sector after end x at f.
+  int corner_face(int f, const End& x) const {
+    const int v = feature[f];
+    if (x.path < 0) return mesh.faces_of(v).front();
+    const std::vector<int> ring = mesh.ring(v);
+    const int k = int(std::find(ring.begin(), ring.end(), first_step(x)) - ring.begin());
+    const int b = ring[k], c = ring[(k + 1) % ring.size()];
+    for (int t : mesh.faces_of(v)) {
+      const Triangle& tri = mesh.triangles()[t];
+      if (std::count(tri.begin(), tri.end(), b) && std::count(tri.begin(), tri.end(), c)) return t;
+    }
+    throw Error("internal error: no triangle in a corner");
+  }
+
+  // Dijkstra over unblocked vertices (of the triangles in `faces` when
+  // given) from `sources`; distances and parents.
+  void dijkstra(const std::vector<int>& sources, const std::vector<char>* allowed, std::vector<double>& dist,
+                std::vector<int>& parent) const {
+    const int n = mesh.vertex_count();
+    dist.assign(n, kInf);
+    parent.assign(n, -1);
+    using Entry = std::pair<double, int>;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> open;
+    for (int s : sources) {
+      dist[s] = 0;
+      open.push({0, s});
+    }
+    while (!open.empty()) {
+      const auto [d, u] = open.top();
+      open.pop();
+      if (d > dist[u]) continue;
+      for (int w : mesh.ring(u)) {
+        if (blocked[w] || (allowed && !(*allowed)[w])) continue;
+        const double nd = d + (mesh.position(w) - mesh.position(u)).norm();
+        if (nd < dist[w]) {
+          dist[w] = nd;
+          parent[w] = u;
+          open.push({nd, w});
+        }
+      }
+    }
+  }
+
+ private:
+  // A traced sequence can step back into a triangle one of its own earlier
+  // midpoints has split (see path_network.cpp): reconnect through this
+  // path's new vertices and cut the loops that creates.
+  std::vector<int> connected(const std::vector<int>& path, int first_new) const {
+    std::vector<int> result{path.front()};
+    for (size_t i = 1; i < path.size(); ++i) {
+      const int from = result.back(), to = path[i];
+      if (mesh.edge(from, to) < 0) {
+        std::unordered_map<int, int> parent{{from, from}};
+        std::vector<int> frontier{from};
+        for (size_t f = 0; f < frontier.size() && !parent.count(to); ++f)
+          for (int w : mesh.ring(frontier[f]))
+            if ((w >= first_new || w == to) && parent.emplace(w, frontier[f]).second) frontier.push_back(w);
+        if (!parent.count(to)) throw Error("internal error: traced path is not connected");
+        std::vector<int> bridge;
+        for (int w = parent.at(to); w != from; w = parent.at(w)) bridge.push_back(w);
+        result.insert(result.end(), bridge.rbegin(), bridge.rend());
+      }
+      result.push_back(to);
+    }
+    std::vector<int> simple;
+    std::unordered_map<int, size_t> at;
+    for (int v : result) {
+      const auto it = at.find(v);
+      if (it != at.end()) {
+        for (size_t j = it->second + 1; j < simple.size(); ++j) at.erase(simple[j]);
+        simple.resize(it->second + 1);
+        continue;
+      }
+      at[v] = simple.size();
+      simple.push_back(v);
+    }
+    return simple;
+  }
+};
+
+class Partitioner {
+ public:
+  Partitioner(const TriangleMesh& a, const TriangleMesh& b, const std::vector<std::array<int, 2>>& features, int genus)
+      : genus_(genus) {
+    sides_.emplace_back(a);
+    sides_.emplace_back(b);
+    for (int s = 0; s < 2; ++s) {
+      const TriangleMesh& m = s == 0 ? a : b;
+      double area = 0;
+      for (const Triangle& t : m.triangles)
+        area += 0.5 * (m.vertices[t[1]] - m.vertices[t[0]]).cross(m.vertices[t[2]] - m.vertices[t[0]]).norm();
+      scale_[s] = std::sqrt(std::max(area, 1e-300));
+    }
+    for (const auto& f : features) add_pair(f[0], f[1]);
+  }
+
+  ConsistentPartition run() {
+    tree();
+    handles();
+    complete();
+    return assemble();
+  }
+
+ private:
+  int add_pair(int va, int vb) {
+    sides_[0].add_feature(va);
+    sides_[1].add_feature(vb);
+    return int(sides_[0].feature.size()) - 1;
+  }
+
+  // Summed, size-normalized distance between two features on both meshes.
+  double cost(int i, int j) const {
+    double c = 0;
+    for (int s = 0; s < 2; ++s) {
+      const Side& side = sides_[s];
+      c += (side.mesh.position(side.feature[i]) - side.mesh.position(side.feature[j])).norm() / scale_[s];
+    }
+    return c;
+  }
+
+  // Traces a path between features i and j on A, then on B through the
+  // sectors it used on A; lays both. False when either has no path.
+  bool connect(int i, int j, const Attach& at_i, const Attach& at_j) {
+    Traced traced;
+    if (!trace(i, j, at_i, at_j, traced)) return false;
+    lay(i, j, traced);
+    return true;
+  }
+
+  // A corresponding pair of traced node sequences (search nodes as in mesh_search.h).
+  struct Traced {
+    std::vector<int> nodes[2];
+    int vertices[2] = {0, 0};
+    double length = 0;  // summed, size-normalized
+  };
+
+  bool trace(int i, int j, const Attach& at_i, const Attach& at_j, Traced& traced) const {
+    std::vector<int>* nodes = traced.nodes;
+    int* vertices = traced.vertices;
+    End used_i, used_j;  // the sectors on A, for kMatch
+    for (int s = 0; s < 2; ++s) {
+      const Side& side = sides_[s];
+      const std::vector<End> around_i = side.ends(i, edges_), around_j = side.ends(j, edges_);
+      const auto rule = [&](const Attach& at, const End& used) -> std::pair<bool, End> {
+        if (at.mode == Attach::kFree || (at.mode == Attach::kMatch && s == 0)) return {false, {}};
+        return {true, at.mode == Attach::kFixed ? at.after : used};
+      };
+      const auto [restrict_i, after_i] = rule(at_i, used_i);
+      const auto [restrict_j, after_j] = rule(at_j, used_j);
+      for (bool midpoints : {false, true}) {
+        vertices[s] = side.mesh.vertex_count();
+        const Sector leave = side.after(i, after_i, around_i, vertices[s], midpoints);
+        const Sector enter = side.after(j, after_j, around_j, vertices[s], midpoints);
+        nodes[s] = side.trace(i, j, restrict_i ? &leave : nullptr, restrict_j ? &enter : nullptr, midpoints);
+        if (!nodes[s].empty()) {
+          if (s == 0) {
+            used_i = side.gap_of(i, nodes[s][1], around_i, vertices[s], midpoints);
+            used_j = side.gap_of(j, nodes[s][nodes[s].size() - 2], around_j, vertices[s], midpoints);
+          }
+          break;
+        }
+      }
+      if (nodes[s].empty()) return false;
+      traced.length += path_length(side.mesh, nodes[s], vertices[s]) / scale_[s];
+    }
+    return true;
+  }
+
+  void lay(int i, int j, const Traced& traced) {
+    const std::vector<int>* nodes = traced.nodes;
+    for (int s = 0; s < 2; ++s) sides_[s].lay(nodes[s], traced.vertices[s]);
+    edges_.push_back({i, j});
+  }
+
+  // Phase 1: a spanning tree of the features.
+  void tree() {
+    const int k = int(sides_[0].feature.size());
+    std::vector<std::pair<double, std::array<int, 2>>> candidates;
+    for (int i = 0; i < k; ++i) {
+      std::vector<std::pair<double, int>> near;
+      for (int j = 0; j < k; ++j)
+        if (j != i) near.push_back({cost(i, j), j});
+      std::sort(near.begin(), near.end());
+      for (int n = 0; n < int(near.size()); ++n)
+        if (n < kNearest || k <= 2 * kNearest) candidates.push_back({near[n].first, {std::min(i, near[n].second), std::max(i, near[n].second)}});
+    }
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    std::vector<int> root(k);
+    std::iota(root.begin(), root.end(), 0);
+    const std::function<int(int)> find = [&](int x) { return root[x] == x ? x : root[x] = find(root[x]); };
+    int components = k;
+    for (const auto& [c, pair] : candidates) {
+      if (find(pair[0]) == find(pair[1])) continue;
+      if (!connect(pair[0], pair[1], {Attach::kMatch, {}}, {Attach::kMatch, {}})) continue;
+      root[find(pair[0])] = find(pair[1]);
+      --components;
+    }
+    if (components > 1) throw Error("could not connect the features by a tree of corresponding paths");
+  }
+
+  // Counter-clockwise ends around every feature (on side s).
+  std::vector<std::vector<End>> rotation(int s) const {
+    std::vector<std::vector<End>> around(sides_[s].feature.size());
+    for (int f = 0; f < int(around.size()); ++f) around[f] = sides_[s].ends(f, edges_);
+    return around;
+  }
+
+  // Boundary walks of the faces of the (connected) network, from A's rotation.
+  std::vector<Walk> walks() const {
+    const std::vector<std::vector<End>> around = rotation(0);
+    std::vector<std::vector<char>> seen(around.size());
+    for (size_t f = 0; f < around.size(); ++f) seen[f].assign(around[f].size(), 0);
+    std::vector<Walk> result;
+    for (int f = 0; f < int(around.size()); ++f)
+      for (int i = 0; i < int(around[f].size()); ++i) {
+        if (seen[f][i]) continue;
+        Walk walk;
+        Corner c{f, i};
+        while (!seen[c.feature][c.index]) {
+          seen[c.feature][c.index] = 1;
+          const std::vector<End>& here = around[c.feature];
+          const End out = here[(c.index + 1) % here.size()];
+          walk.corners.push_back(c);
+          walk.after.push_back(here[c.index]);
+          walk.leaving.push_back(out);
+          const int g = edges_[out.path][1 - out.end];
+          const std::vector<End>& there = around[g];
+          const End in{out.path, 1 - out.end};
+          c = {g, int(std::find(there.begin(), there.end(), in) - there.begin())};
+        }
+        result.push_back(walk);
+      }
+    return result;
+  }
+
+  void require_one_region() const {
+    for (int s = 0; s < 2; ++s) {
+      int count = 0;
+      sides_[s].regions(count);
+      if (count != 1)
+        throw Error(std::string("internal error: a non-separating path separates ") + (s == 0 ? "A" : "B"));
+    }
+  }
+
+  // Phase 2: 2g non-separating paths.
+  void handles() {
+    while (int(edges_.size()) - int(sides_[0].feature.size()) + 1 < 2 * genus_) {
+      const std::vector<Walk> all = walks();
+      if (all.size() >= 2) {
+        join(all);
+      } else {
+        handle_loop();
+      }
+      require_one_region();
+    }
+  }
+
+  // A path between corners of two different walks: never separating.
+  void join(const std::vector<Walk>& all) {
+    using Named = std::pair<int, End>;  // a corner: feature and the end it follows
+    std::vector<std::pair<double, std::pair<Named, Named>>> candidates;
+    for (size_t i = 0; i < all[0].corners.size(); ++i)
+      for (size_t w = 1; w < all.size(); ++w)
+        for (size_t j = 0; j < all[w].corners.size(); ++j) {
+          const Named x{all[0].corners[i].feature, all[0].after[i]}, y{all[w].corners[j].feature, all[w].after[j]};
+          if (x.first != y.first) candidates.push_back({cost(x.first, y.first), {x, y}});
+        }
+    std::sort(candidates.begin(), candidates.end(),
+              [](const auto& p, const auto& q) { return p.first < q.first; });
+    for (int n = 0; n < int(candidates.size()) && n < kJoinAttempts; ++n) {
+      const auto& [x, y] = candidates[n].second;
+      if (connect(x.first, y.first, {Attach::kFixed, x.second}, {Attach::kFixed, y.second})) return;
+    }
+    throw Error("could not join two boundaries of the cut surface by corresponding paths");
+  }
+
+  // The shortest non-separating cycle found by tree-cotree in the single
+  // region of side s: a vertex list from its apex back to it.
+  std::vector<int> nonseparating_cycle(int s) {
+    for (int attempt = 0; attempt < 2; ++attempt) {
+      Side& side = sides_[s];
+      std::vector<double> far;
+      std::vector<int> parent;
+      std::vector<int> sources;
+      for (int v = 0; v < side.mesh.vertex_count(); ++v)
+        if (side.blocked[v]) sources.push_back(v);
+      side.dijkstra(sources, nullptr, far, parent);
+      int root = -1;
+      for (int v = 0; v < side.mesh.vertex_count(); ++v)
+        if (!side.blocked[v] && std::isfinite(far[v]) && (root < 0 || far[v] > far[root])) root = v;
+      if (root >= 0) {
+        std::vector<double> dist;
+        side.dijkstra({root}, nullptr, dist, parent);
+        const int edges = side.mesh.edge_count();
+        std::vector<char> tree(edges, 0), cotree(edges, 0);
+        for (int v = 0; v < side.mesh.vertex_count(); ++v)
+          if (parent[v] >= 0) tree[side.mesh.edge(v, parent[v])] = 1;
+        // Cotree: a spanning tree of the faces across non-path, non-tree
+        // edges, those with a path vertex first, so that as few edges between
+        // free vertices as possible are used up (Kruskal with weights 0 / 1).
+        const int faces = int(side.mesh.triangles().size());
+        std::vector<int> group(faces);
+        std::iota(group.begin(), group.end(), 0);
+        const std::function<int(int)> find = [&](int x) {
+          while (group[x] != x) x = group[x] = group[group[x]];
+          return x;
+        };
+        for (int interior = 0; interior < 2; ++interior)
+          for (int e = 0; e < edges; ++e) {
+            const auto [u, w] = side.mesh.edge_vertices(e);
+            if (u < 0 || tree[e] || side.path_edges.count(e)) continue;
+            if ((!side.blocked[u] && !side.blocked[w]) != bool(interior)) continue;
+            const auto& two = side.mesh.edge_faces(e);
+            const int x = find(two[0]), y = find(two[1]);
+            if (x != y) {
+              group[x] = y;
+              cotree[e] = 1;
+            }
+          }
+        std::vector<int> depth(side.mesh.vertex_count(), -1);
+        const auto depth_of = [&](int v) {
+          std::vector<int> chain;
+          for (int u = v; depth[u] < 0; u = parent[u]) {
+            chain.push_back(u);
+            if (parent[u] < 0) {
+              depth[u] = 0;
+              chain.pop_back();
+              break;
+            }
+          }
+          for (auto it = chain.rbegin(); it != chain.rend(); ++it) depth[*it] = depth[parent[*it]] + 1;
+          return depth[v];
+        };
+        const auto lca = [&](int u, int w) {
+          while (depth_of(u) > depth_of(w)) u = parent[u];
+          while (depth_of(w) > depth_of(u)) w = parent[w];
+          while (u != w) u = parent[u], w = parent[w];
+          return u;
+        };
+        double best = kInf;
+        int bu = -1, bw = -1;
+        for (int e = 0; e < edges; ++e) {
+          const auto [u, w] = side.mesh.edge_vertices(e);
+          if (u < 0 || tree[e] || cotree[e] || side.path_edges.count(e) || side.blocked[u] || side.blocked[w]) continue;
+          if (!std::isfinite(dist[u]) || !std::isfinite(dist[w])) continue;
+          const double length =
+              dist[u] + dist[w] + (side.mesh.position(u) - side.mesh.position(w)).norm() - 2 * dist[lca(u, w)];
+          if (length < best) best = length, bu = u, bw = w;
+        }
+        if (bu >= 0) {
+          const int apex = lca(bu, bw);
+          std::vector<int> cycle, back;
+          for (int v = bu; v != apex; v = parent[v]) cycle.push_back(v);
+          cycle.push_back(apex);
+          std::reverse(cycle.begin(), cycle.end());
+          for (int v = bw; v != apex; v = parent[v]) back.push_back(v);
+          cycle.insert(cycle.end(), back.begin(), back.end());
+          cycle.push_back(apex);
+          return cycle;
+        }
+      }
+      // Too thin to hold a cycle of free vertices: split the edges between path vertices and retry.
+      const int edges = side.mesh.edge_count();
+      for (int e = 0; e < edges; ++e) {
+        const auto [u, w] = side.mesh.edge_vertices(e);
+        if (u >= 0 && side.blocked[u] && side.blocked[w] && !side.path_edges.count(e)) side.split(e);
+      }
+    }
+    throw Error(std::string("no non-separating cycle found on ") + (s == 0 ? "A" : "B"));
+  }
+
+  // A new feature pair on a non-separating cycle of each mesh, joined to the
+  // network; the cycle becomes two paths through a second new pair.
+  void handle_loop() {
+    std::vector<int> cycle[2];
+    for (int s = 0; s < 2; ++s) {
+      cycle[s] = nonseparating_cycle(s);
+      Side& side = sides_[s];
+      for (size_t i = 0; i + 1 < cycle[s].size(); ++i) side.path_edges.insert(side.mesh.edge(cycle[s][i], cycle[s][i + 1]));
+      for (int v : cycle[s]) side.blocked[v] = 1;
+    }
+    const int p = add_pair(cycle[0].front(), cycle[1].front());
+    std::vector<std::pair<double, int>> targets;
+    for (int f = 0; f < p; ++f) targets.push_back({cost(p, f), f});
+    std::sort(targets.begin(), targets.end());
+    bool joined = false;
+    for (const auto& [c, f] : targets)
+      if ((joined = connect(p, f, {Attach::kFree, {}}, {Attach::kMatch, {}}))) break;
+    if (!joined) throw Error("could not join a non-separating cycle to the path network");
+    // Orient B's cycle so the three ends at p have A's cyclic order.
+    bool ccw[2];
+    for (int s = 0; s < 2; ++s) {
+      const Side& side = sides_[s];
+      const std::vector<int> ring = side.mesh.ring(side.feature[p]);
+      const auto pos = [&](int v) { return std::find(ring.begin(), ring.end(), v) - ring.begin(); };
+      const long n = long(ring.size());
+      const long join_at = pos(side.paths.back()[1]);
+      const long out = (pos(cycle[s][1]) - join_at + n) % n, in = (pos(cycle[s][cycle[s].size() - 2]) - join_at + n) % n;
+      ccw[s] = out < in;
+    }
+    if (ccw[0] != ccw[1]) std::reverse(cycle[1].begin(), cycle[1].end());
+    // Split each cycle at half its length: a second new pair.
+    int middle[2];
+    for (int s = 0; s < 2; ++s) {
+      const Side& side = sides_[s];
+      double total = 0;
+      std::vector<double> at{0};
+      for (size_t i = 1; i < cycle[s].size(); ++i)
+        at.push_back(total += (side.mesh.position(cycle[s][i]) - side.mesh.position(cycle[s][i - 1])).norm());
+      middle[s] = 1;
+      for (int i = 1; i + 1 < int(cycle[s].size()); ++i)
+        if (std::abs(at[i] - total / 2) < std::abs(at[middle[s]] - total / 2)) middle[s] = i;
+    }
+    const int q = add_pair(cycle[0][middle[0]], cycle[1][middle[1]]);
+    for (int s = 0; s < 2; ++s) {
+      Side& side = sides_[s];
+      side.register_path(std::vector<int>(cycle[s].begin(), cycle[s].begin() + middle[s] + 1));
+      side.register_path(std::vector<int>(cycle[s].begin() + middle[s], cycle[s].end()));
+    }
+    edges_.push_back({p, q});
+    edges_.push_back({q, p});
+  }
+
+  // The unblocked vertex of side s in `region` farthest from its boundary,
+  // splitting an edge of the region when it has none.
+  int centre(int s, const std::vector<int>& region, int r) {
+    Side& side = sides_[s];
+    for (int attempt = 0; attempt < 2; ++attempt) {
+      std::vector<char> inside(side.mesh.vertex_count(), 0);
+      std::vector<int> sources;
+      for (int f = 0; f < int(region.size()); ++f)
+        if (region[f] == r)
+          for (int v : side.mesh.triangles()[f]) {
+            if (!inside[v] && side.blocked[v]) sources.push_back(v);
+            inside[v] = 1;
+          }
+      std::vector<double> dist;
+      std::vector<int> parent;
+      side.dijkstra(sources, &inside, dist, parent);
+      int best = -1;
+      for (int v = 0; v < side.mesh.vertex_count(); ++v)
+        if (inside[v] && !side.blocked[v] && std::isfinite(dist[v]) && (best < 0 || dist[v] > dist[best])) best = v;
+      if (best >= 0) return best;
+      int longest = -1;
+      double length = -1;
+      for (int f = 0; f < int(region.size()); ++f)
+        if (region[f] == r) {
+          const Triangle& t = side.mesh.triangles()[f];
+          for (int k = 0; k < 3; ++k) {
+            const int e = side.mesh.edge(t[k], t[(k + 1) % 3]);
+            const double l = (side.mesh.position(t[k]) - side.mesh.position(t[(k + 1) % 3])).norm();
+            if (!side.path_edges.count(e) && l > length) length = l, longest = e;
+          }
+        }
+      if (longest < 0) break;
+      side.split(longest);
+    }
+    throw Error("a face of the partition is too narrow for a new feature");
+  }
+
+  // Phase 3: a new feature pair in every face that is not a triangle of three
+  // distinct features, joined to each corner of its walk in order.
+  void complete() {
+    const int limit = 8 * int(edges_.size()) + 64;  // each round adds a path; a face of m corners needs m - 3
+    for (int round = 0;; ++round) {
+      if (round > limit) throw Error("could not complete the partition to triangles");
+      std::vector<Walk> todo;
+      for (const Walk& w : walks()) {
+        std::vector<int> f;
+        for (const Corner& c : w.corners) f.push_back(c.feature);
+        std::sort(f.begin(), f.end());
+        if (f.size() != 3 || std::unique(f.begin(), f.end()) != f.end()) todo.push_back(w);
+      }
+      if (todo.empty()) return;
+      for (const Walk& walk : todo) {
+        if (diagonal(walk)) continue;
+        const std::vector<End>& corner_ends = walk.after;
+        int v[2];
+        for (int s = 0; s < 2; ++s) {
+          int count = 0;
+          const std::vector<int> region = sides_[s].regions(count);
+          v[s] = centre(s, region, region[sides_[s].corner_face(walk.corners[0].feature, corner_ends[0])]);
+        }
+        const int c = add_pair(v[0], v[1]);
+        for (size_t k = 0; k < walk.corners.size(); ++k)
+          if (!connect(c, walk.corners[k].feature, {Attach::kFree, {}}, {Attach::kFixed, corner_ends[k]}))
+            throw Error("could not join a new feature to the corners of its face");
+      }
+    }
+  }
+
+  // The shortest-looking path between two non-adjacent corners of distinct
+  // features of a face, inside it: splits it into two smaller faces.
+  bool diagonal(const Walk& walk) {
+    const int m = int(walk.corners.size());
+    std::vector<std::pair<double, std::array<int, 2>>> candidates;
+    for (int i = 0; i < m; ++i)
+      for (int j = i + 2; j < m; ++j) {
+        if ((i + m - j) < 2 || walk.corners[i].feature == walk.corners[j].feature) continue;
+        candidates.push_back({cost(walk.corners[i].feature, walk.corners[j].feature), {i, j}});
+      }
+    std::sort(candidates.begin(), candidates.end(), [](const auto& p, const auto& q) { return p.first < q.first; });
+    // Of the nearest few, the shortest traced pair.
+    Traced best;
+    std::array<int, 2> chosen{-1, -1};
+    for (int n = 0; n < int(candidates.size()) && n < kDiagonalAttempts; ++n) {
+      const auto [i, j] = candidates[n].second;
+      Traced traced;
+      if (trace(walk.corners[i].feature, walk.corners[j].feature, {Attach::kFixed, walk.after[i]},
+                {Attach::kFixed, walk.after[j]}, traced) &&
+          (chosen[0] < 0 || traced.length < best.length)) {
+        best = std::move(traced);
+        chosen = {i, j};
+      }
+    }
+    if (chosen[0] < 0) return false;
+    lay(walk.corners[chosen[0]].feature, walk.corners[chosen[1]].feature, best);
+    return true;
+  }
+
+  ConsistentPartition assemble() {
+    // Equal rotation systems: the same cyclic order of ends at every feature.
+    const auto around_a = rotation(0), around_b = rotation(1);
+    for (size_t f = 0; f < around_a.size(); ++f) {
+      const auto& x = around_a[f];
+      const auto& y = around_b[f];
+      bool same = x.size() == y.size();
+      if (same && !x.empty()) {
+        const size_t shift = std::find(y.begin(), y.end(), x[0]) - y.begin();
+        for (size_t i = 0; same && i < x.size(); ++i) same = shift < y.size() && x[i] == y[(i + shift) % y.size()];
+      }
+      if (!same) throw Error("internal error: the cyclic order of paths differs at feature " + std::to_string(f));
+    }
+    ConsistentPartition result;
+    result.edges = edges_;
+    const std::vector<Walk> all = walks();
+    const int v = int(sides_[0].feature.size()), e = int(edges_.size()), f = int(all.size());
+    if (v - e + f != 2 - 2 * genus_)
+      throw Error("internal error: the partition has Euler characteristic " + std::to_string(v - e + f));
+    for (const Walk& w : all) {
+      BaseTriangle t;
+      for (int k = 0; k < 3; ++k) {
+        t.corners[k] = w.corners[k].feature;
+        t.edges[k] = w.leaving[k].path;
+        t.reversed[k] = w.leaving[k].end == 1;
+      }
+      result.triangles.push_back(t);
+    }
+    for (int s = 0; s < 2; ++s) {
+      Side& side = sides_[s];
+      int count = 0;
+      const std::vector<int> region = side.regions(count);
+      if (count != f)
+        throw Error(std::string("internal error: ") + (s == 0 ? "A" : "B") + " has " + std::to_string(count) +
+                    " regions for " + std::to_string(f) + " base triangles");
+      std::vector<int> triangle_of(count, -1);
+      for (int t = 0; t < f; ++t) {
+        int& slot = triangle_of[region[side.corner_face(all[t].corners[0].feature, all[t].after[0])]];
+        if (slot >= 0) throw Error("internal error: two base triangles share a region");
+        slot = t;
+      }
+      PartitionSide out{std::move(side.mesh), side.feature, side.paths, {}};
+      for (int r : region) out.patch.push_back(triangle_of[r]);
+      result.sides.push_back(std::move(out));
+    }
+    return result;
+  }
+
+  int genus_;
+  std::vector<Side> sides_;
+  double scale_[2] = {1, 1};
+  std::vector<std::array<int, 2>> edges_;
+};
+
+}  // namespace
+
+ConsistentPartition consistent_partition(const TriangleMesh& a, const TriangleMesh& b,
+                                         const std::vector<std::array<int, 2>>& features, int genus) {
+  if (features.empty()) throw InvalidInput("a consistent partition needs at least one feature pair");
+  Partitioner partitioner(a, b, features, genus);
+  ConsistentPartition result = partitioner.run();
+  result.given_features = int(features.size());
+  return result;
+}
+
+}  // namespace cmaps

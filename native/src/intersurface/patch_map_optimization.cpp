@@ -1,0 +1,325 @@
+#include "intersurface/patch_map_optimization.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include "common/parallel_for.h"
+#include "intersurface/patch_locator.h"
+
+namespace cmaps {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr int kHalvings = 10;         // line search: step, step / 2, ...
+constexpr double kFlipPenalty = 1e6;  // energy density of an image triangle facing against the surface there
+// A vertex whose ring holds more target vertices than this stays where it is:
+// each trial re-maps all of them (such rings lie where the target is
+// compressed most, e.g. between unrelated feature pairs).
+constexpr int kMaxRemapped = 256;
+
+double surface_area(const PartitionSide& side) {
+  double area = 0;
+  for (const Triangle& t : side.mesh.triangles())
+    area += 0.5 * (side.mesh.position(t[1]) - side.mesh.position(t[0]))
+                      .cross(side.mesh.position(t[2]) - side.mesh.position(t[0]))
+                      .norm();
+  return area;
+}
+
+// A triangle's area and the cotangents of its angles.
+struct Shape {
+  double area = 0;
+  double cot[3] = {0, 0, 0};
+};
+
+Shape shape_of(const PartitionSide& side, int f) {
+  const Triangle& t = side.mesh.triangles()[f];
+  const Vec3 p[3] = {side.mesh.position(t[0]), side.mesh.position(t[1]), side.mesh.position(t[2])};
+  Shape s;
+  s.area = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
+  for (int i = 0; i < 3; ++i) {
+    const Vec3 u = p[(i + 1) % 3] - p[i], v = p[(i + 2) % 3] - p[i];
+    s.cot[i] = u.dot(v) / std::max(u.cross(v).norm(), 1e-300);
+  }
+  return s;
+}
+
+// A point's image on the other mesh (scaled to this mesh's area) and that mesh's normal there.
+struct Image {
+  Vec3 position = Vec3::Zero(), normal = Vec3::Zero();
+};
+
+// Area times symmetric Dirichlet density of the linear map from a triangle
+// onto the chord triangle of its corners' images; inf when degenerate.
+double triangle_energy(const Shape& s, const Image* image[3]) {
+  if (s.area <= 0) return 0;
+  const Vec3 nq = (image[1]->position - image[0]->position).cross(image[2]->position - image[0]->position);
+  const double aq = 0.5 * nq.norm();
+  if (aq <= 1e-14 * s.area) return kInf;
+  if (nq.dot(image[0]->normal + image[1]->normal + image[2]->normal) < 0) return kFlipPenalty * s.area;
+  double dirichlet = 0;
+  for (int i = 0; i < 3; ++i)
+    dirichlet += s.cot[i] * (image[(i + 2) % 3]->position - image[(i + 1) % 3]->position).squaredNorm();
+  dirichlet /= 2 * s.area;
+  return s.area * dirichlet * (1 + (s.area / aq) * (s.area / aq));
+}
+
+// Barycentric coordinates of p in the 2D triangle (a, b, c).
+std::array<double, 3> barycentric(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
+  const Vec2 e = b - a, d = c - a, q = p - a;
+  const double det = e.x() * d.y() - e.y() * d.x();
+  if (std::abs(det) < 1e-300) return {-1, -1, -1};
+  const double s = (q.x() * d.y() - q.y() * d.x()) / det, t = (e.x() * q.y() - e.y() * q.x()) / det;
+  return {1 - s - t, s, t};
+}
+
+// One patch, both directions: the source's triangles mapped onto the target
+// and the target's triangles mapped back, as functions of one free source
+// vertex's canonical point. Moving it re-maps the target vertices inside its
+// ring (the ring's outline stays, so no others).
+class PatchEnergy {
+ public:
+  PatchEnergy(const PartitionSide& source, std::unordered_map<int, Vec2>& uv, const std::vector<int>& faces,
+              const PartitionSide& target, const std::unordered_map<int, Vec2>& target_uv,
+              const std::vector<int>& target_faces, double scale)
+      : source_(source), uv_(uv), target_(target), target_uv_(target_uv), scale_(scale) {
+    target_locator_ = std::make_unique<PatchLocator>(target, target_uv, target_faces);
+    const PatchLocator onto_source(source, uv, faces);
+    for (int f : faces) {
+      shape_[f] = shape_of(source, f);
+      for (int v : source.mesh.triangles()[f])
+        if (!image_.count(v)) image_[v] = locate(*target_locator_, target, uv.at(v), scale);
+    }
+    for (int g : target_faces) {
+      back_shape_[g] = shape_of(target, g);
+      for (int w : target.mesh.triangles()[g])
+        if (!back_image_.count(w)) {
+          const auto [f, weights] = onto_source.locate(target_uv.at(w));
+          back_image_[w] = image_in(source, f, weights, 1 / scale);
+          host_[f].push_back(w);
+        }
+    }
+    // All triangles of the embedding turn the same way (it is bijective); keep it so.
+    double total = 0;
+    for (int f : faces) total += signed_area(f, -1, Vec2());
+    orientation_ = total >= 0 ? 1 : -1;
+  }
+
+  // Both directions' energies, the target's weighted to the source's area.
+  double total(double& area) const {
+    double e = 0;
+    area = 0;
+    for (const auto& [f, s] : shape_) {
+      const double fe = source_energy(f, -1, nullptr);
+      if (std::isfinite(fe)) e += fe, area += s.area;
+    }
+    for (const auto& [g, s] : back_shape_) {
+      const double ge = target_energy(g, {});
+      if (std::isfinite(ge)) e += scale_ * scale_ * ge;
+    }
+    return e;
+  }
+
+  // One descent step of vertex v: normalized gradient (central differences), halving line search.
+  bool improve(int v) {
+    std::size_t inside = 0;
+    for (int f : source_.mesh.faces_of(v)) {
+      const auto it = host_.find(f);
+      if (it != host_.end()) inside += it->second.size();
+    }
+    if (inside > kMaxRemapped) return false;
+    const Vec2 u0 = uv_.at(v);
+    Move current = trial(v, u0);
+    if (!std::isfinite(current.energy)) return false;
+    double length = 0;
+    int count = 0;
+    for (int f : source_.mesh.faces_of(v))
+      for (int w : source_.mesh.triangles()[f])
+        if (w != v) length += (uv_.at(w) - u0).norm(), ++count;
+    length /= std::max(count, 1);
+    const double h = 1e-4 * length;
+    Vec2 gradient;
+    for (int axis = 0; axis < 2; ++axis) {
+      Vec2 d = Vec2::Zero();
+      d[axis] = h;
+      const double plus = trial(v, u0 + d).energy, minus = trial(v, u0 - d).energy;
+      if (std::isfinite(plus) && std::isfinite(minus)) gradient[axis] = (plus - minus) / (2 * h);
+      else if (std::isfinite(plus)) gradient[axis] = (plus - current.energy) / h;
+      else if (std::isfinite(minus)) gradient[axis] = (current.energy - minus) / h;
+      else return false;
+    }
+    if (!(gradient.norm() > 0)) return false;
+    const Vec2 direction = -gradient.normalized();
+    double step = 0.5 * length;
+    for (int k = 0; k < kHalvings; ++k, step *= 0.5) {
+      Move move = trial(v, u0 + step * direction);
+      if (move.energy < current.energy) {
+        apply(v, move);
+        return true;
+      }
+    }
+    return false;
+  }
+
+ private:
+  // Vertex v at canonical point p: its image, the re-mapped target vertices, the ring's energy.
+  struct Move {
+    Vec2 point;
+    Image image;
+    std::vector<std::pair<int, Image>> remapped;  // target vertex, its new image
+    std::vector<int> hosts;                       // per remapped vertex: its new source triangle
+    double energy = kInf;
+  };
+
+  static Image image_in(const PartitionSide& side, int face, const std::array<double, 3>& w, double scale) {
+    const Triangle& t = side.mesh.triangles()[face];
+    const Vec3 &a = side.mesh.position(t[0]), &b = side.mesh.position(t[1]), &c = side.mesh.position(t[2]);
+    return {scale * (w[0] * a + w[1] * b + w[2] * c), (b - a).cross(c - a).normalized()};
+  }
+
+  static Image locate(const PatchLocator& locator, const PartitionSide& side, const Vec2& p, double scale) {
+    const auto [face, w] = locator.locate(p);
+    return image_in(side, face, w, scale);
+  }
+
+  Move trial(int v, const Vec2& p) const {
+    Move m;
+    m.point = p;
+    for (int f : source_.mesh.faces_of(v))
+      if (orientation_ * signed_area(f, v, p) <= 0) return m;
+    m.image = locate(*target_locator_, target_, p, scale_);
+    // Target vertices inside the ring: their source triangle with v at p.
+    std::vector<int> touched;
+    for (int f : source_.mesh.faces_of(v)) {
+      const auto it = host_.find(f);
+      if (it == host_.end()) continue;
+      for (int w : it->second) {
+        const Vec2& q = target_uv_.at(w);
+        int best = -1;
+        std::array<double, 3> weights{};
+        double score = -kInf;
+        for (int g : source_.mesh.faces_of(v)) {
+          const Triangle& t = source_.mesh.triangles()[g];
+          Vec2 c[3];
+          for (int k = 0; k < 3; ++k) c[k] = t[k] == v ? p : uv_.at(t[k]);
+          const auto b = barycentric(q, c[0], c[1], c[2]);
+          const double low = std::min({b[0], b[1], b[2]});
+          if (low > score) score = low, best = g, weights = b;
+        }
+        double sum = 0;
+        for (double& x : weights) sum += (x = std::max(0.0, x));
+        for (double& x : weights) x = sum > 0 ? x / sum : 1.0 / 3;
+        // The image lies in the moved triangle: v's position enters through its weight.
+        m.remapped.push_back({w, image_in(source_, best, weights, 1 / scale_)});
+        m.hosts.push_back(best);
+        for (int g : target_.mesh.faces_of(w)) touched.push_back(g);
+      }
+    }
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    double e = 0;
+    for (int f : source_.mesh.faces_of(v)) e += source_energy(f, v, &m.image);
+    for (int g : touched)
+      if (back_shape_.count(g)) e += scale_ * scale_ * target_energy(g, m.remapped);
+    m.energy = e;
+    return m;
+  }
+
+  void apply(int v, const Move& m) {
+    uv_[v] = m.point;
+    image_[v] = m.image;
+    for (int f : source_.mesh.faces_of(v)) host_.erase(f);
+    for (size_t i = 0; i < m.remapped.size(); ++i) {
+      back_image_[m.remapped[i].first] = m.remapped[i].second;
+      host_[m.hosts[i]].push_back(m.remapped[i].first);
+    }
+  }
+
+  double source_energy(int f, int v, const Image* q) const {
+    const Triangle& t = source_.mesh.triangles()[f];
+    const Image* image[3];
+    for (int k = 0; k < 3; ++k) image[k] = t[k] == v ? q : &image_.at(t[k]);
+    return triangle_energy(shape_.at(f), image);
+  }
+
+  double target_energy(int g, const std::vector<std::pair<int, Image>>& remapped) const {
+    const Triangle& t = target_.mesh.triangles()[g];
+    const Image* image[3];
+    for (int k = 0; k < 3; ++k) {
+      image[k] = &back_image_.at(t[k]);
+      for (const auto& [w, i] : remapped)
+        if (w == t[k]) image[k] = &i;
+    }
+    return triangle_energy(back_shape_.at(g), image);
+  }
+
+  double signed_area(int f, int v, const Vec2& p) const {
+    const Triangle& t = source_.mesh.triangles()[f];
+    Vec2 c[3];
+    for (int k = 0; k < 3; ++k) c[k] = t[k] == v ? p : uv_.at(t[k]);
+    const Vec2 a = c[1] - c[0], b = c[2] - c[0];
+    return 0.5 * (a.x() * b.y() - a.y() * b.x());
+  }
+
+  const PartitionSide& source_;
+  std::unordered_map<int, Vec2>& uv_;
+  const PartitionSide& target_;
+  const std::unordered_map<int, Vec2>& target_uv_;
+  double scale_;
+  double orientation_ = 1;
+  std::unordered_map<int, Shape> shape_, back_shape_;
+  std::unordered_map<int, Image> image_, back_image_;
+  std::unordered_map<int, std::vector<int>> host_;  // source triangle -> target vertices inside it
+  std::unique_ptr<PatchLocator> target_locator_;
+};
+
+}  // namespace
+
+MapOptimization optimize_patch_map(const PartitionSide& source, PatchParameterization& source_uv,
+                                   const PartitionSide& target, const PatchParameterization& target_uv,
+                                   int sweeps, int threads) {
+  const int patches = int(source_uv.uv.size());
+  std::vector<std::vector<int>> faces(patches), target_faces(patches);
+  for (int f = 0; f < int(source.patch.size()); ++f) faces[source.patch[f]].push_back(f);
+  for (int f = 0; f < int(target.patch.size()); ++f) target_faces[target.patch[f]].push_back(f);
+  std::vector<char> on_path(source.mesh.vertex_count(), 0);
+  for (const auto& path : source.paths)
+    for (int v : path) on_path[v] = 1;
+  const double scale = std::sqrt(surface_area(source) / surface_area(target));
+
+  std::vector<double> before(patches, 0), after(patches, 0), area(patches, 0);
+  std::vector<int> moves(patches, 0);
+  parallel_for(
+      patches, threads,
+      [&](int t) {
+        PatchEnergy energy(source, source_uv.uv[t], faces[t], target, target_uv.uv[t], target_faces[t], scale);
+        before[t] = energy.total(area[t]);
+        std::vector<int> free;
+        for (const auto& [v, p] : source_uv.uv[t])
+          if (!on_path[v]) free.push_back(v);
+        std::sort(free.begin(), free.end());
+        for (int sweep = 0; sweep < sweeps; ++sweep) {
+          int moved = 0;
+          for (int v : free) moved += energy.improve(v);
+          moves[t] += moved;
+          if (moved == 0) break;
+        }
+        double ignored = 0;
+        after[t] = energy.total(ignored);
+      },
+      1);
+  MapOptimization result;
+  double total_area = 0;
+  for (int t = 0; t < patches; ++t) {
+    result.energy_before += before[t];
+    result.energy_after += after[t];
+    result.moves += moves[t];
+    total_area += area[t];
+  }
+  if (total_area > 0) result.energy_before /= total_area, result.energy_after /= total_area;
+  return result;
+}
+
+}  // namespace cmaps

@@ -1,0 +1,23 @@
+// Local optimization of a patch-wise inter-surface map for its symmetric
+// Dirichlet energy: the source's free vertices (off the partition's paths)
+// move inside their patch's canonical triangle, each to a lower energy of
+// its triangles mapped onto the target (chords between the images, the
+// target scaled to the source's area), never so far that a triangle of the
+// source's embedding turns over. The embedding stays a bijection onto the
+// canonical triangle, so the map stays continuous and bijective; the path
+// network itself (and so the map along it) does not move.
+#pragma once
+#include "intersurface/patch_parameterization.h"
+
+namespace cmaps {
+
+struct MapOptimization {
+  double energy_before = 0, energy_after = 0;  // area-weighted mean over the source's patch triangles
+  int moves = 0;
+};
+
+MapOptimization optimize_patch_map(const PartitionSide& source, PatchParameterization& source_uv,
+                                   const PartitionSide& target, const PatchParameterization& target_uv,
+                                   int sweeps, int threads);
+
+}  // namespace cmaps

@@ -1,0 +1,183 @@
+#include "intersurface/patch_parameterization.h"
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseLU>
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "common/parallel_for.h"
+#include "consistent_maps/errors.h"
+#include "intersurface/patch_locator.h"
+
+namespace cmaps {
+namespace {
+
+const Vec2 kCorner[3] = {Vec2(0, 0), Vec2(1, 0), Vec2(0.5, std::sqrt(3.0) / 2)};
+
+// Splits every non-path edge whose ends both lie on paths, keeping `patch`
+// (per triangle) in step with the new triangles.
+void split_chords(PartitionSide& side) {
+  std::vector<char> on_path(side.mesh.vertex_count(), 0);
+  std::vector<char> path_edge(side.mesh.edge_count(), 0);
+  for (const auto& path : side.paths) {
+    for (int v : path) on_path[v] = 1;
+    for (size_t i = 0; i + 1 < path.size(); ++i) path_edge[side.mesh.edge(path[i], path[i + 1])] = 1;
+  }
+  const int edges = side.mesh.edge_count();
+  for (int e = 0; e < edges; ++e) {
+    const auto [u, w] = side.mesh.edge_vertices(e);
+    if (u < 0 || path_edge[e] || !on_path[u] || !on_path[w]) continue;
+    const auto faces = side.mesh.edge_faces(e);
+    side.mesh.split_edge(e);
+    side.patch.push_back(side.patch[faces[0]]);
+    side.patch.push_back(side.patch[faces[1]]);
+  }
+}
+
+// Canonical points of one patch: its boundary by arc length, its interior
+// by mean-value weights.
+std::unordered_map<int, Vec2> parameterize(const PartitionSide& side, const BaseTriangle& base,
+                                           const std::vector<int>& faces) {
+  std::unordered_map<int, Vec2> uv;
+  for (int k = 0; k < 3; ++k) {
+    std::vector<int> path = side.paths[base.edges[k]];
+    if (base.reversed[k]) std::reverse(path.begin(), path.end());
+    std::vector<double> at{0};
+    for (size_t i = 1; i < path.size(); ++i)
+      at.push_back(at.back() + (side.mesh.position(path[i]) - side.mesh.position(path[i - 1])).norm());
+    for (size_t i = 0; i < path.size(); ++i) {
+      const double t = at.back() > 0 ? at[i] / at.back() : double(i) / (path.size() - 1);
+      uv[path[i]] = (1 - t) * kCorner[k] + t * kCorner[(k + 1) % 3];
+    }
+  }
+  std::unordered_map<int, int> index;  // interior vertex -> unknown
+  for (int f : faces)
+    for (int v : side.mesh.triangles()[f])
+      if (!uv.count(v) && !index.count(v)) index.emplace(v, int(index.size()));
+  const int n = int(index.size());
+  if (n == 0) return uv;
+
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
+  std::vector<std::unordered_map<int, double>> weight(n);
+  for (int f : faces) {
+    const Triangle& t = side.mesh.triangles()[f];
+    for (int k = 0; k < 3; ++k) {
+      const auto it = index.find(t[k]);
+      if (it == index.end()) continue;
+      const Vec3 &p = side.mesh.position(t[k]), &q = side.mesh.position(t[(k + 1) % 3]),
+                 &r = side.mesh.position(t[(k + 2) % 3]);
+      const double lq = (q - p).norm(), lr = (r - p).norm();
+      const double angle = std::atan2((q - p).cross(r - p).norm(), (q - p).dot(r - p));
+      const double half = std::tan(angle / 2);
+      for (const auto& [v, l] : {std::pair<int, double>{t[(k + 1) % 3], lq}, {t[(k + 2) % 3], lr}}) {
+        const double w = half / l;
+        weight[it->second][v] += std::isfinite(w) && w > 0 ? w : 1e-12;
+      }
+    }
+  }
+  for (const auto& [v, i] : index) {
+    double total = 0;
+    for (const auto& [u, w] : weight[i]) {
+      total += w;
+      const auto j = index.find(u);
+      if (j != index.end()) entries.emplace_back(i, j->second, -w);
+      else rhs.row(i) += w * uv.at(u).transpose();
+    }
+    entries.emplace_back(i, i, total);
+  }
+  Eigen::SparseMatrix<double> matrix(n, n);
+  matrix.setFromTriplets(entries.begin(), entries.end());
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> solver;
+  solver.compute(matrix);
+  if (solver.info() != Eigen::Success) throw Error("internal error: a patch parameterization is singular");
+  const Eigen::MatrixXd x = solver.solve(rhs);
+  for (const auto& [v, i] : index) uv[v] = x.row(i).transpose();
+  return uv;
+}
+
+// A point of the refined target (triangle, weights) on its input triangle.
+InputLocation to_input(const PartitionSide& side, const TriangleMesh& input, int face, const std::array<double, 3>& w) {
+  InputLocation p;
+  p.triangle = side.mesh.input_triangle(face);
+  const Triangle& corners = input.triangles[p.triangle];
+  double stray = 0;
+  Vec3 x = Vec3::Zero();
+  for (int k = 0; k < 3; ++k) {
+    const InputPoint& origin = side.mesh.surface_point(side.mesh.triangles()[face][k]);
+    for (int j = 0; j < 3; ++j) {
+      const int v = origin.vertices[j];
+      if (v < 0) continue;
+      const double weight = w[k] * origin.weights[j];
+      x += weight * input.vertices[v];
+      const int slot = int(std::find(corners.begin(), corners.end(), v) - corners.begin());
+      if (slot < 3) p.barycentric[slot] += weight;
+      else stray += std::abs(weight);
+    }
+  }
+  if (stray > 1e-12) {  // never, up to the refinement's bookkeeping: project onto the triangle
+    const Vec3 &a = input.vertices[corners[0]], e1 = input.vertices[corners[1]] - a, e2 = input.vertices[corners[2]] - a;
+    const double aa = e1.dot(e1), ab = e1.dot(e2), bb = e2.dot(e2), det = aa * bb - ab * ab;
+    const Vec3 d = x - a;
+    const double s = det > 0 ? (bb * d.dot(e1) - ab * d.dot(e2)) / det : 0;
+    const double t = det > 0 ? (aa * d.dot(e2) - ab * d.dot(e1)) / det : 0;
+    p.barycentric = {1 - s - t, s, t};
+  }
+  double sum = 0;
+  for (double& b : p.barycentric) sum += (b = std::max(0.0, b));
+  for (double& b : p.barycentric) b = sum > 0 ? b / sum : 1.0 / 3;
+  return p;
+}
+
+std::vector<std::vector<int>> faces_by_patch(const PartitionSide& side, int patches) {
+  std::vector<std::vector<int>> faces(patches);
+  for (int f = 0; f < int(side.patch.size()); ++f) faces[side.patch[f]].push_back(f);
+  return faces;
+}
+
+}  // namespace
+
+PatchParameterization parameterize_patches(PartitionSide& side, const ConsistentPartition& partition) {
+  split_chords(side);
+  const int patches = int(partition.triangles.size());
+  const std::vector<std::vector<int>> faces = faces_by_patch(side, patches);
+  PatchParameterization result;
+  result.uv.resize(patches);
+  parallel_for(patches, 2, [&](int t) { result.uv[t] = parameterize(side, partition.triangles[t], faces[t]); });
+  return result;
+}
+
+std::vector<InputLocation> map_vertices(const PartitionSide& source, const PatchParameterization& source_uv,
+                                        const PartitionSide& target, const PatchParameterization& target_uv,
+                                        const TriangleMesh& target_input, int threads) {
+  const int patches = int(target_uv.uv.size());
+  const std::vector<std::vector<int>> faces = faces_by_patch(target, patches);
+  std::vector<PatchLocator> locators;
+  locators.reserve(patches);
+  for (int t = 0; t < patches; ++t) locators.emplace_back(target, target_uv.uv[t], faces[t]);
+
+  const int n = source.mesh.input_vertex_count();
+  std::vector<InputLocation> image(n);
+  parallel_for(n, threads, [&](int v) {
+    const int t = source.patch[source.mesh.faces_of(v).front()];
+    const auto [face, w] = locators[t].locate(source_uv.uv[t].at(v));
+    image[v] = to_input(target, target_input, face, w);
+  });
+
+  // Features exactly onto their partners.
+  std::vector<int> incident(target_input.vertices.size(), -1);
+  for (int t = 0; t < int(target_input.triangles.size()); ++t)
+    for (int v : target_input.triangles[t])
+      if (incident[v] < 0) incident[v] = t;
+  for (size_t f = 0; f < source.feature_vertex.size(); ++f) {
+    const int from = source.feature_vertex[f], to = target.feature_vertex[f];
+    if (from >= n || to >= target.mesh.input_vertex_count()) continue;
+    InputLocation& p = image[from];
+    p.triangle = incident[to];
+    for (int j = 0; j < 3; ++j) p.barycentric[j] = target_input.triangles[p.triangle][j] == to ? 1 : 0;
+  }
+  return image;
+}
+
+}  // namespace cmaps
