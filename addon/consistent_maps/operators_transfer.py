@@ -47,49 +47,50 @@ class CM_OT_transfer(bpy.types.Operator):
         return {'FINISHED'}
 
 
-class CM_OT_bake_texture(bpy.types.Operator):
+class BakeOperator:
+    """The bake operators' shared steps: the panel's source, the active object as target, one report."""
+    bl_options = {'REGISTER', 'UNDO'}
+
+    def execute(self, context):
+        settings = context.scene.consistent_maps
+        source, target = settings.transfer_source, context.active_object
+        if source is None or target is None:
+            self.report({'ERROR'}, "Choose the source, and make the object to bake for the active object")
+            return {'CANCELLED'}
+        try:
+            image = self.bake(settings, source, target)
+        except api.MapError as e:
+            self.report({'ERROR'}, str(e))
+            return {'CANCELLED'}
+        self.report({'INFO'}, self.baked(image, target))
+        return {'FINISHED'}
+
+
+class CM_OT_bake_texture(BakeOperator, bpy.types.Operator):
     """Bake the source's image texture into a new image in the active object's UV layout, through the
     common map (Cycles); the objects are not modified"""
     bl_idname = "consistent_maps.bake_texture"
     bl_label = "Bake Texture"
-    bl_options = {'REGISTER', 'UNDO'}
 
-    def execute(self, context):
-        settings = context.scene.consistent_maps
-        source, target = settings.transfer_source, context.active_object
-        if source is None or target is None:
-            self.report({'ERROR'}, "Choose the source, and make the object to bake for the active object")
-            return {'CANCELLED'}
-        try:
-            image = api.bake_texture(source, target, settings.bake_size)
-        except api.MapError as e:
-            self.report({'ERROR'}, str(e))
-            return {'CANCELLED'}
-        self.report({'INFO'}, f"Image '{image.name}' ({image.size[0]} px): save or pack it to keep it")
-        return {'FINISHED'}
+    def bake(self, settings, source, target):
+        return api.bake_texture(source, target, settings.bake_size)
+
+    def baked(self, image, target):
+        return f"Image '{image.name}' ({image.size[0]} px): save or pack it to keep it"
 
 
-class CM_OT_bake_normal_map(bpy.types.Operator):
+class CM_OT_bake_normal_map(BakeOperator, bpy.types.Operator):
     """Bake the source's surface normals into a new tangent-space normal map in the active object's UV
     layout, through the common map (Cycles); the objects are not modified"""
     bl_idname = "consistent_maps.bake_normal_map"
     bl_label = "Bake Normal Map"
-    bl_options = {'REGISTER', 'UNDO'}
 
-    def execute(self, context):
-        settings = context.scene.consistent_maps
-        source, target = settings.transfer_source, context.active_object
-        if source is None or target is None:
-            self.report({'ERROR'}, "Choose the source, and make the object to bake for the active object")
-            return {'CANCELLED'}
-        try:
-            image = api.bake_normal_map(source, target, settings.bake_size, align=settings.normal_align)
-        except api.MapError as e:
-            self.report({'ERROR'}, str(e))
-            return {'CANCELLED'}
-        self.report({'INFO'}, f"Normal map '{image.name}' ({image.size[0]} px, tangent space of UV map "
-                              f"'{target.data.uv_layers.active.name}'): save or pack it to keep it")
-        return {'FINISHED'}
+    def bake(self, settings, source, target):
+        return api.bake_normal_map(source, target, settings.bake_size, align=settings.normal_align)
+
+    def baked(self, image, target):
+        return (f"Normal map '{image.name}' ({image.size[0]} px, tangent space of UV map "
+                f"'{target.data.uv_layers.active.name}'): save or pack it to keep it")
 
 
 CLASSES = (CM_OT_transfer, CM_OT_bake_texture, CM_OT_bake_normal_map)

@@ -12,12 +12,15 @@
 #include "consistent_maps/mesh_io.h"
 #include "intersurface/consistent_partition.h"
 #include "intersurface/patch_parameterization.h"
+#include "intersurface_expectations.h"
 #include "test_support.h"
 
 namespace cmaps {
 namespace {
 
 using test::diagonal;
+using test::expect_exact_features;
+using test::expect_valid_points;
 using test::shared_mesh;
 
 struct Pair {
@@ -103,26 +106,6 @@ TEST_P(HigherGenusPartition, BaseTriangulationsAgreeAndPatchesEmbedBijectively) 
       EXPECT_TRUE(positive == 0 || negative == 0) << positive << " / " << negative << " in patch " << t;
       EXPECT_NEAR(std::abs(total), std::sqrt(3.0) / 4, 1e-9);
     }
-  }
-}
-
-void expect_valid_points(const std::vector<SurfacePoint>& points, const TriangleMesh& target) {
-  for (const SurfacePoint& p : points) {
-    ASSERT_GE(p.triangle, 0);
-    ASSERT_LT(p.triangle, int(target.triangles.size()));
-    double sum = 0;
-    for (double w : p.barycentric) {
-      EXPECT_GE(w, 0);
-      sum += w;
-    }
-    EXPECT_NEAR(sum, 1, 1e-12);
-  }
-}
-
-void expect_exact_features(const IntersurfaceResult& r, const TriangleMesh& a, const TriangleMesh& b) {
-  for (const FeaturePair& f : r.features) {
-    EXPECT_EQ(r.a_on_b[f.a], b.vertices[f.b]);
-    EXPECT_EQ(r.b_on_a[f.b], a.vertices[f.a]);
   }
 }
 

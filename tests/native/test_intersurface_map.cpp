@@ -10,42 +10,19 @@
 #include "consistent_maps/errors.h"
 #include "consistent_maps/intersurface_map.h"
 #include "consistent_maps/mesh_io.h"
+#include "intersurface_expectations.h"
 #include "test_support.h"
 
 namespace cmaps {
 namespace {
 
 using test::diagonal;
+using test::expect_exact_features;
+using test::expect_valid_points;
 using test::shared_mesh;
 
 // Measured 1.6 % (effort 0; 2.0 % for the plain composition); a map ignoring the landmarks is off by 30 %.
 constexpr double kLion2CatTolerance = 0.03;
-
-void expect_valid_points(const std::vector<SurfacePoint>& points, const TriangleMesh& target) {
-  for (const SurfacePoint& p : points) {
-    ASSERT_GE(p.triangle, 0);
-    ASSERT_LT(p.triangle, int(target.triangles.size()));
-    double sum = 0;
-    for (double w : p.barycentric) {
-      EXPECT_GE(w, 0);
-      sum += w;
-    }
-    EXPECT_NEAR(sum, 1, 1e-12);
-  }
-}
-
-// Each feature's image is its partner vertex, weight exactly 1.
-void expect_exact_features(const IntersurfaceResult& r, const TriangleMesh& a, const TriangleMesh& b) {
-  for (const FeaturePair& f : r.features) {
-    const SurfacePoint &on_b = r.a_to_b[f.a], &on_a = r.b_to_a[f.b];
-    for (int k = 0; k < 3; ++k) {
-      EXPECT_EQ(on_b.barycentric[k], b.triangles[on_b.triangle][k] == f.b ? 1.0 : 0.0);
-      EXPECT_EQ(on_a.barycentric[k], a.triangles[on_a.triangle][k] == f.a ? 1.0 : 0.0);
-    }
-    EXPECT_EQ(r.a_on_b[f.a], b.vertices[f.b]);
-    EXPECT_EQ(r.b_on_a[f.b], a.vertices[f.a]);
-  }
-}
 
 struct CatLion {
   TriangleMesh cat, lion;

@@ -123,6 +123,19 @@ def read_obj_vertices(path):
     return np.array([line.split()[1:4] for line in open(path) if line.startswith("v ")], dtype=float)
 
 
+def expect_written_maps(out, a, b):
+    """The four files of `cmaps intersurface`: valid images both ways, positions interpolated from them."""
+    assert sorted(p.name for p in out.iterdir()) == ["A_on_B.obj", "A_to_B.txt", "B_on_A.obj", "B_to_A.txt"]
+    for name, source, target in (("A", a, b), ("B", b, a)):
+        other = "B" if name == "A" else "A"
+        triangles, weights = read_points(out / f"{name}_to_{other}.txt")
+        assert len(triangles) == len(source[0])
+        expect_valid(triangles.astype(np.int32), weights, target[1])
+        positions = read_obj_vertices(out / f"{name}_on_{other}.obj")
+        expected = np.einsum("ij,ijk->ik", weights, target[0][target[1][triangles]])
+        assert np.allclose(positions, expected, atol=1e-5)
+
+
 def test_cli_writes_maps_and_json(cmaps_binary, native, tmp_path):
     a, b = native.read_mesh(str(SPOT)), native.read_mesh(str(SPHERE))
     features = tmp_path / "features.json"
@@ -135,15 +148,7 @@ def test_cli_writes_maps_and_json(cmaps_binary, native, tmp_path):
     assert report["features"] == 1 and len(report["added_features"]) == 3
     assert len(report["symmetric_dirichlet"]) == len(report["flipped"]) == len(report["steiner"]) == 2
     assert report["seconds"] > 0 and report["sphere_flipped"] == 0
-    assert sorted(p.name for p in out.iterdir()) == ["A_on_B.obj", "A_to_B.txt", "B_on_A.obj", "B_to_A.txt"]
-    for name, source, target in (("A", a, b), ("B", b, a)):
-        other = "B" if name == "A" else "A"
-        triangles, weights = read_points(out / f"{name}_to_{other}.txt")
-        assert len(triangles) == len(source[0])
-        expect_valid(triangles.astype(np.int32), weights, target[1])
-        positions = read_obj_vertices(out / f"{name}_on_{other}.obj")
-        expected = np.einsum("ij,ijk->ik", weights, target[0][target[1][triangles]])
-        assert np.allclose(positions, expected, atol=1e-5)
+    expect_written_maps(out, a, b)
     triangles, weights = read_points(out / "A_to_B.txt")
     assert weights[10][list(b[1][triangles[10]]).index(20)] == 1  # the given pair maps exactly
     # The distortion optimization (default 2 rounds) improves on the plain composition in both directions.
@@ -216,14 +221,6 @@ def test_cli_genus_one(cmaps_binary, native, tmp_path):
     report = json.loads(result.stdout)
     assert report["error"] is None and report["genus"] == 1 and report["features"] == 2
     assert report["base_triangles"] > 0 and report["seconds_partition"] > 0
-    assert sorted(p.name for p in out.iterdir()) == ["A_on_B.obj", "A_to_B.txt", "B_on_A.obj", "B_to_A.txt"]
-    for name, source, target in (("A", a, b), ("B", b, a)):
-        other = "B" if name == "A" else "A"
-        triangles, weights = read_points(out / f"{name}_to_{other}.txt")
-        assert len(triangles) == len(source[0])
-        expect_valid(triangles.astype(np.int32), weights, target[1])
-        positions = read_obj_vertices(out / f"{name}_on_{other}.obj")
-        expected = np.einsum("ij,ijk->ik", weights, target[0][target[1][triangles]])
-        assert np.allclose(positions, expected, atol=1e-5)
+    expect_written_maps(out, a, b)
     triangles, weights = read_points(out / "A_to_B.txt")
     assert weights[1000][list(b[1][triangles[1000]]).index(500)] == 1  # the given pair maps exactly

@@ -150,7 +150,7 @@ class Side {
   void lay(const std::vector<int>& nodes, int vertices) {
     std::vector<int> path;
     for (int node : nodes) path.push_back(node < vertices ? node : split(node - vertices));
-    register_path(connected(path, vertices));
+    register_path(reconnect_traced_path(mesh, path, vertices));
   }
 
   void register_path(const std::vector<int>& path) {
@@ -229,42 +229,6 @@ class Side {
         }
       }
     }
-  }
-
- private:
-  // A traced sequence can step back into a triangle one of its own earlier
-  // midpoints has split (see path_network.cpp): reconnect through this
-  // path's new vertices and cut the loops that creates.
-  std::vector<int> connected(const std::vector<int>& path, int first_new) const {
-    std::vector<int> result{path.front()};
-    for (size_t i = 1; i < path.size(); ++i) {
-      const int from = result.back(), to = path[i];
-      if (mesh.edge(from, to) < 0) {
-        std::unordered_map<int, int> parent{{from, from}};
-        std::vector<int> frontier{from};
-        for (size_t f = 0; f < frontier.size() && !parent.count(to); ++f)
-          for (int w : mesh.ring(frontier[f]))
-            if ((w >= first_new || w == to) && parent.emplace(w, frontier[f]).second) frontier.push_back(w);
-        if (!parent.count(to)) throw Error("internal error: traced path is not connected");
-        std::vector<int> bridge;
-        for (int w = parent.at(to); w != from; w = parent.at(w)) bridge.push_back(w);
-        result.insert(result.end(), bridge.rbegin(), bridge.rend());
-      }
-      result.push_back(to);
-    }
-    std::vector<int> simple;
-    std::unordered_map<int, size_t> at;
-    for (int v : result) {
-      const auto it = at.find(v);
-      if (it != at.end()) {
-        for (size_t j = it->second + 1; j < simple.size(); ++j) at.erase(simple[j]);
-        simple.resize(it->second + 1);
-        continue;
-      }
-      at[v] = simple.size();
-      simple.push_back(v);
-    }
-    return simple;
   }
 };
 

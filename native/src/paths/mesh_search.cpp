@@ -5,6 +5,8 @@
 #include <limits>
 #include <queue>
 
+#include "consistent_maps/errors.h"
+
 namespace cmaps {
 
 bool Sector::allows(int node) const {
@@ -101,6 +103,39 @@ std::vector<int> shortest_path(const EditableMesh& mesh, int source, int target,
   for (int n = target; n >= 0; n = parent[n]) path.push_back(n);
   std::reverse(path.begin(), path.end());
   return path;
+}
+
+std::vector<int> reconnect_traced_path(const EditableMesh& mesh, const std::vector<int>& path, int first_new) {
+  std::vector<int> result{path.front()};
+  for (size_t i = 1; i < path.size(); ++i) {
+    const int from = result.back(), to = path[i];
+    if (mesh.edge(from, to) < 0) {
+      std::unordered_map<int, int> parent{{from, from}};
+      std::vector<int> frontier{from};
+      for (size_t f = 0; f < frontier.size() && !parent.count(to); ++f)
+        for (int w : mesh.ring(frontier[f]))
+          if ((w >= first_new || w == to) && parent.emplace(w, frontier[f]).second) frontier.push_back(w);
+      if (!parent.count(to)) throw Error("internal error: traced path is not connected");
+      std::vector<int> bridge;
+      for (int w = parent.at(to); w != from; w = parent.at(w)) bridge.push_back(w);
+      result.insert(result.end(), bridge.rbegin(), bridge.rend());
+    }
+    result.push_back(to);
+  }
+  // Cut loops: keep the part after the last visit of a repeated vertex.
+  std::vector<int> simple;
+  std::unordered_map<int, size_t> at;
+  for (int v : result) {
+    const auto it = at.find(v);
+    if (it != at.end()) {
+      for (size_t j = it->second + 1; j < simple.size(); ++j) at.erase(simple[j]);
+      simple.resize(it->second + 1);
+      continue;
+    }
+    at[v] = simple.size();
+    simple.push_back(v);
+  }
+  return simple;
 }
 
 }  // namespace cmaps

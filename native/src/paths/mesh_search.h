@@ -37,6 +37,13 @@ std::vector<int> shortest_path(const EditableMesh& mesh, int source, int target,
 // Euclidean length of a node sequence (nodes encoded as in the search).
 double path_length(const EditableMesh& mesh, const std::vector<int>& nodes, int vertices);
 
+// A path laid down from a search result can step back into a triangle that
+// one of its own earlier midpoints has split, so two consecutive vertices
+// end up one Steiner vertex apart: reconnects them through the path's new
+// vertices (those >= first_new, all inside the traced corridor) and cuts the
+// loops that creates.
+std::vector<int> reconnect_traced_path(const EditableMesh& mesh, const std::vector<int>& path, int first_new);
+
 // The search-node position of a vertex or edge midpoint.
 Vec3 node_position(const EditableMesh& mesh, int node, int vertices);
 

@@ -237,42 +237,6 @@ class Tracer {
 
   double path_length(const std::vector<int>& nodes) const { return cmaps::path_length(mesh_, nodes, search_vertices_); }
 
-  // A traced sequence can step back into a triangle that one of its own
-  // earlier midpoints has split, so two consecutive vertices end up one
-  // Steiner vertex apart: reconnect them through this path's new vertices
-  // (all inside the traced corridor) and cut the loops that creates.
-  std::vector<int> connected(const std::vector<int>& path, int first_new) const {
-    std::vector<int> result{path.front()};
-    for (size_t i = 1; i < path.size(); ++i) {
-      const int from = result.back(), to = path[i];
-      if (mesh_.edge(from, to) < 0) {
-        std::unordered_map<int, int> parent{{from, from}};
-        std::vector<int> frontier{from};
-        for (size_t f = 0; f < frontier.size() && !parent.count(to); ++f)
-          for (int w : mesh_.ring(frontier[f]))
-            if ((w >= first_new || w == to) && parent.emplace(w, frontier[f]).second) frontier.push_back(w);
-        if (!parent.count(to)) throw Error("internal error: traced path is not connected");
-        std::vector<int> bridge;
-        for (int w = parent.at(to); w != from; w = parent.at(w)) bridge.push_back(w);
-        result.insert(result.end(), bridge.rbegin(), bridge.rend());
-      }
-      result.push_back(to);
-    }
-    // Cut loops: keep the part after the last visit of a repeated vertex.
-    std::vector<int> simple;
-    std::unordered_map<int, size_t> at;
-    for (int v : result) {
-      const auto it = at.find(v);
-      if (it != at.end()) {
-        for (size_t j = it->second + 1; j < simple.size(); ++j) at.erase(simple[j]);
-        simple.resize(it->second + 1);
-        continue;
-      }
-      at[v] = simple.size();
-      simple.push_back(v);
-    }
-    return simple;
-  }
 
   // Turns a traced node sequence into mesh vertices (splitting the edges of
   // midpoint nodes) and blocks it for later paths.
@@ -288,7 +252,7 @@ class Tracer {
         blocked_.push_back(0);
       }
     }
-    path = connected(path, vertices);
+    path = reconnect_traced_path(mesh_, path, vertices);
     for (size_t i = 0; i + 1 < path.size(); ++i) path_edges_.insert(mesh_.edge(path[i], path[i + 1]));
     for (size_t i = 1; i + 1 < path.size(); ++i) blocked_[path[i]] = 1;
     const auto [i, j] = network_.arcs[a];
