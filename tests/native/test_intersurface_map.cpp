@@ -110,6 +110,31 @@ TEST(IntersurfaceMap, NoOptimizationKeepsThePlainComposition) {
   EXPECT_EQ(optimized.sphere_flipped, 0);
 }
 
+TEST(IntersurfaceMap, UnusedVerticesTakeTheirNearestUsedVertexImage) {
+  // spot_low with two stray vertices no triangle uses (as the teapot has).
+  TriangleMesh a = read_mesh(shared_mesh("genus0/spot_low.obj"));
+  const TriangleMesh b = read_mesh(shared_mesh("genus0/sphere.obj"));
+  const int n = int(a.vertices.size());
+  a.vertices.push_back(a.vertices[5] + Vec3(1e-3, 0, 0));
+  a.vertices.insert(a.vertices.begin(), a.vertices[7] + Vec3(0, 1e-3, 0));  // shifts every index by one
+  for (Triangle& t : a.triangles)
+    for (int& v : t) ++v;
+  IntersurfaceOptions options;
+  options.sphere.effort = 0;
+  options.optimize_rounds = 0;
+  const std::vector<FeaturePair> pairs{{11, 3}, {201, 40}, {401, 100}};
+  const IntersurfaceResult r = intersurface_map(a, b, pairs, options);
+  ASSERT_EQ(r.a_to_b.size(), a.vertices.size());
+  ASSERT_EQ(r.a_on_b.size(), a.vertices.size());
+  expect_valid_points(r.a_to_b, b);
+  expect_valid_points(r.b_to_a, a);
+  for (size_t k = 0; k < pairs.size(); ++k) EXPECT_EQ(r.features[k].a, pairs[k].a);
+  expect_exact_features(r, a, b);
+  EXPECT_EQ(r.a_on_b[0], r.a_on_b[8]);          // the stray copy near vertex 7 (now 8)
+  EXPECT_EQ(r.a_on_b[n + 1], r.a_on_b[6]);      // the stray copy near vertex 5 (now 6)
+  EXPECT_THROW(intersurface_map(a, b, {{0, 3}, {201, 40}, {401, 100}}, options), InvalidInput);
+}
+
 TEST(IntersurfaceMap, RoundTripIsCloseToIdentity) {
   // A -> B -> A: B's images on A interpolated at A's images on B.
   const CatLion& d = cat_lion();

@@ -129,6 +129,8 @@ struct IntersurfaceResult {
          seconds_locate = 0, seconds_measure = 0, seconds = 0;
 };
 
+// Vertices that no triangle uses are left out of the computation; each takes
+// the image of the nearest used vertex (a feature on one is refused).
 // Throws TopologyError for a mesh that is not one closed, manifold,
 // consistently oriented surface (naming A or B), for meshes of different
 // genus ("A has genus 1, B has genus 2; an inter-surface map needs equal

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <tuple>
 
@@ -331,6 +332,43 @@ void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, Intersurf
   result.steiner_b = partition.sides[1].mesh.vertex_count() - int(b.vertices.size());
 }
 
+// Vertices no triangle uses (the teapot has 4) carry no surface: the map is
+// computed without them, and each takes the image of the nearest used vertex.
+struct UsedVertices {
+  TriangleMesh mesh;         // the used vertices only, triangles in their order
+  std::vector<int> to_used;  // per input vertex: its index in `mesh`, -1 if unused
+  std::vector<int> nearest;  // per input vertex: the nearest used input vertex (itself if used)
+};
+
+// Null when every vertex is used (or an index is out of range: check_mesh reports that).
+std::optional<UsedVertices> drop_unused(const TriangleMesh& mesh) {
+  const int n = int(mesh.vertices.size());
+  std::vector<char> used(n, 0);
+  for (const Triangle& t : mesh.triangles)
+    for (int v : t) {
+      if (v < 0 || v >= n) return std::nullopt;
+      used[v] = 1;
+    }
+  if (std::count(used.begin(), used.end(), 1) == n) return std::nullopt;
+  UsedVertices u;
+  u.to_used.assign(n, -1);
+  for (int v = 0; v < n; ++v)
+    if (used[v]) u.to_used[v] = int(u.mesh.vertices.size()), u.mesh.vertices.push_back(mesh.vertices[v]);
+  for (Triangle t : mesh.triangles) {
+    for (int& v : t) v = u.to_used[v];
+    u.mesh.triangles.push_back(t);
+  }
+  u.nearest.resize(n);
+  for (int v = 0; v < n; ++v) {
+    u.nearest[v] = v;
+    double best = std::numeric_limits<double>::infinity();
+    for (int w = 0; !used[v] && w < n; ++w)
+      if (used[w] && (mesh.vertices[w] - mesh.vertices[v]).squaredNorm() < best)
+        best = (mesh.vertices[w] - mesh.vertices[v]).squaredNorm(), u.nearest[v] = w;
+  }
+  return u;
+}
+
 }  // namespace
 
 std::vector<Vec3> surface_positions(const TriangleMesh& target, const std::vector<SurfacePoint>& points) {
@@ -390,6 +428,40 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
                                     const std::vector<FeaturePair>& features, const IntersurfaceOptions& options,
                                     const ProgressCallback& progress) {
   const auto start = Clock::now();
+  const std::optional<UsedVertices> used_a = drop_unused(a), used_b = drop_unused(b);
+  if (used_a || used_b) {
+    // The map of the used vertices, then every input vertex's entry from it.
+    const auto index = [](const std::optional<UsedVertices>& u, int v) { return u ? u->to_used[u->nearest[v]] : v; };
+    check_features(features, a, b);
+    std::vector<FeaturePair> used_features;
+    for (std::size_t k = 0; k < features.size(); ++k) {
+      const FeaturePair& f = features[k];
+      for (const auto& [u, v, name] : {std::tuple<const std::optional<UsedVertices>&, int, const char*>{used_a, f.a, "A"},
+                                       {used_b, f.b, "B"}})
+        if (u && u->to_used[v] < 0)
+          throw InvalidInput("feature pair " + std::to_string(k) + ": vertex " + std::to_string(v) + " of " + name +
+                             " is used by no triangle");
+      used_features.push_back({index(used_a, f.a), index(used_b, f.b)});
+    }
+    IntersurfaceResult r = intersurface_map(used_a ? used_a->mesh : a, used_b ? used_b->mesh : b, used_features,
+                                            options, progress);
+    const auto expand = [&](const std::optional<UsedVertices>& u, int n, auto& per_vertex) {
+      if (!u) return;
+      auto compact = per_vertex;
+      per_vertex.resize(n);
+      for (int v = 0; v < n; ++v) per_vertex[v] = compact[u->to_used[u->nearest[v]]];
+    };
+    expand(used_a, int(a.vertices.size()), r.a_to_b);
+    expand(used_a, int(a.vertices.size()), r.a_on_b);
+    expand(used_b, int(b.vertices.size()), r.b_to_a);
+    expand(used_b, int(b.vertices.size()), r.b_on_a);
+    const auto original = [](const std::optional<UsedVertices>& u, int v) {
+      return u ? int(std::find(u->to_used.begin(), u->to_used.end(), v) - u->to_used.begin()) : v;
+    };
+    for (FeaturePair& f : r.features) f = {original(used_a, f.a), original(used_b, f.b)};
+    r.seconds = seconds_since(start);
+    return r;
+  }
   const int genus_a = checked_genus(a, "A"), genus_b = checked_genus(b, "B");
   if (genus_a != genus_b)
     throw TopologyError("A has genus " + std::to_string(genus_a) + ", B has genus " + std::to_string(genus_b) +
