@@ -531,7 +531,6 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
   stage = Clock::now();
   if (refit || optimize) {
     compose();
-  if (options.corner_images) result.a_corners_to_b = map_through_sphere(corner_directions(a, map_a), b, map_b, {}, threads);
     measure(result.composition_a_to_b, result.composition_b_to_a);
   }
   if (refit) {
