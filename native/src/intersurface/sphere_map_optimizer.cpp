@@ -242,15 +242,4 @@ void MapOptimizer::optimize(int rounds, int sweeps, double tolerance, const std:
   on_other_.reset();
 }
 
-std::pair<double, double> MapOptimizer::energy() {
-  refresh(*a_, *b_);
-  on_other_.reset();
-  double ab = 0, ba = 0;
-  for (size_t f = 0; f < a_->surface.triangles.size(); ++f)
-    ab += a_->triangle_energy(int(f), [&](int u) -> const Vec3& { return a_->images[u]; });
-  for (size_t f = 0; f < b_->surface.triangles.size(); ++f)
-    ba += b_->triangle_energy(int(f), [&](int u) -> const Vec3& { return b_->images[u]; });
-  return {ab, ba};
-}
-
 }  // namespace cmaps

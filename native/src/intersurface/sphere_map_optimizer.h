@@ -23,7 +23,6 @@
 #pragma once
 #include <functional>
 #include <memory>
-#include <utility>
 #include <vector>
 
 #include "consistent_maps/mesh.h"
@@ -46,9 +45,6 @@ class MapOptimizer {
   // until no vertex moves more than `tolerance` (relative to its star) or
   // `sweeps`. `keep_going` is asked between sweeps; false stops early.
   void optimize(int rounds, int sweeps, double tolerance, const std::function<bool(double)>& keep_going);
-
-  // Area-weighted mean symmetric Dirichlet energy of A -> B and of B -> A (4: isometry).
-  std::pair<double, double> energy();
 
  private:
   struct Side;
