@@ -45,9 +45,9 @@ const char* const kUsage = R"(usage:
                     [--seed N] [--effort 0|1|2] [--threads N] [--json]
   cmaps consistent IN IN ... --features FILE -o DIR [--remesh N] [--grid N] [--first K]
                    [--seed N] [--effort 0|1|2] [--threads N] [--json]
-  cmaps intersurface A B [--features FILE] -o DIR [--optimize R] [--seed N] [--effort 0|1|2]
+  cmaps intersurface A B [--features FILE] -o DIR [--optimize R] [--restarts K] [--seed N] [--effort 0|1|2]
                      [--threads N] [--json]
-  cmaps transfer SOURCE TARGET [--features FILE] -o OUT.obj [--positions] [--optimize R]
+  cmaps transfer SOURCE TARGET [--features FILE] -o OUT.obj [--positions] [--optimize R] [--restarts K]
                  [--seed N] [--effort 0|1|2] [--threads N] [--json]
   cmaps --help | --version
 
@@ -118,6 +118,10 @@ options:
   --optimize R       rounds of distortion optimization of the inter-surface map
                      (0..100, default 2; 0 = the plain composition of the
                      two spherical maps, without A's map refitted to B's)
+  --restarts K       genus 0: compute the inter-surface map K times with seeds
+                     N, N+1, ... and keep the least distorted (1..100, default
+                     1); the optimization is local, so with few features
+                     restarts find better maps
   --seed N           random seed; equal seeds give equal results (default 1)
   --effort E         0 = fast preview, 1 = default, 2 = best quality
   --threads N        worker threads (default 2)
@@ -138,8 +142,8 @@ struct Arguments {
   std::string features, targets, refined_mesh;  // constrained only (features: consistent too)
   int remesh = 0, grid = 64, first = -1;        // consistent only
   bool remesh_given = false, grid_given = false, first_given = false;
-  int optimize = 2;  // intersurface and transfer only
-  bool optimize_given = false;
+  int optimize = 2, restarts = 1;  // intersurface and transfer only
+  bool optimize_given = false, restarts_given = false;
   std::uint64_t seed = 1;
   int effort = 1;
   int threads = 2;
@@ -182,6 +186,7 @@ Arguments parse(const std::vector<std::string>& args) {
     else if (arg == "--grid") a.grid = int(parse_integer(arg, value(), 2, 4096)), a.grid_given = true;
     else if (arg == "--first") a.first = int(parse_integer(arg, value(), 0, 1 << 20)), a.first_given = true;
     else if (arg == "--optimize") a.optimize = int(parse_integer(arg, value(), 0, 100)), a.optimize_given = true;
+    else if (arg == "--restarts") a.restarts = int(parse_integer(arg, value(), 1, 100)), a.restarts_given = true;
     else if (arg.size() > 1 && arg[0] == '-') throw UsageError("unknown option '" + arg + "' (see cmaps --help)");
     else if (a.command.empty()) a.command = arg;
     else if (a.inputs.empty() || a.command == "consistent" || a.command == "intersurface" || a.command == "transfer")
@@ -201,8 +206,10 @@ Arguments parse(const std::vector<std::string>& args) {
                                                                                          : " needs -o OUT") +
                      " (see cmaps --help)");
   if (a.command == "check" && !a.output.empty()) throw UsageError("check takes no -o");
-  if (a.command != "intersurface" && a.command != "transfer" && a.optimize_given)
-    throw UsageError(a.command + " takes no --optimize (only intersurface and transfer do)");
+  for (const auto& [option, given] :
+       {std::pair<const char*, bool>{"--optimize", a.optimize_given}, {"--restarts", a.restarts_given}})
+    if (a.command != "intersurface" && a.command != "transfer" && given)
+      throw UsageError(a.command + " takes no " + option + " (only intersurface and transfer do)");
   if (a.positions && a.command != "transfer") throw UsageError(a.command + " takes no --positions (only transfer does)");
   if (a.command != "consistent") {
     for (const auto& [option, given] : {std::pair<const char*, bool>{"--remesh", a.remesh_given},
@@ -782,6 +789,18 @@ std::string surface_points_text(const std::vector<cmaps::SurfacePoint>& points) 
   return text;
 }
 
+// Options of the inter-surface map shared by intersurface and transfer.
+cmaps::IntersurfaceOptions intersurface_options(const Arguments& args) {
+  cmaps::IntersurfaceOptions options;
+  options.sphere.seed = args.seed;
+  options.sphere.effort = args.effort;
+  options.sphere.threads = args.threads;
+  options.optimize_rounds = args.optimize;
+  if (args.optimize == 0) options.correspondence_weight = 0;  // the plain composition
+  options.restarts = args.restarts;
+  return options;
+}
+
 void run_intersurface(const Arguments& args, Outcome& out) {
   out.intersurface = true;
   check_output_directory(args.output);
@@ -792,12 +811,7 @@ void run_intersurface(const Arguments& args, Outcome& out) {
   const std::vector<cmaps::FeaturePair> features = read_feature_pairs(args, a, b);
   out.feature_count = int(features.size());
 
-  cmaps::IntersurfaceOptions options;
-  options.sphere.seed = args.seed;
-  options.sphere.effort = args.effort;
-  options.sphere.threads = args.threads;
-  options.optimize_rounds = args.optimize;
-  if (args.optimize == 0) options.correspondence_weight = 0;  // the plain composition
+  const cmaps::IntersurfaceOptions options = intersurface_options(args);
   const cmaps::IntersurfaceResult result =
       with_terminal_progress(!args.json && isatty(STDERR_FILENO), [&](const cmaps::ProgressCallback& progress) {
         return cmaps::intersurface_map(a, b, features, options, progress);
@@ -839,6 +853,7 @@ void run_intersurface(const Arguments& args, Outcome& out) {
       .add_json("composition_dirichlet",
                 JsonObject::array(std::vector<double>{result.composition_a_to_b.symmetric_dirichlet,
                                                       result.composition_b_to_a.symmetric_dirichlet}))
+      .add("restart_dirichlet", result.restart_dirichlet)
       .add("seconds_partition", result.seconds_partition)
       .add("seconds_parameterize", result.seconds_parameterize)
       .add("seconds_optimize", result.seconds_optimize)
@@ -885,13 +900,8 @@ void run_transfer(const Arguments& args, Outcome& out) {
   for (cmaps::FeaturePair& f : features) std::swap(f.a, f.b);  // the map goes from TARGET (A) onto SOURCE (B)
   out.feature_count = int(features.size());
 
-  cmaps::IntersurfaceOptions options;
-  options.sphere.seed = args.seed;
-  options.sphere.effort = args.effort;
-  options.sphere.threads = args.threads;
+  cmaps::IntersurfaceOptions options = intersurface_options(args);
   options.corner_images = uvs;
-  options.optimize_rounds = args.optimize;
-  if (args.optimize == 0) options.correspondence_weight = 0;  // the plain composition
   const cmaps::IntersurfaceResult map =
       with_terminal_progress(!args.json && isatty(STDERR_FILENO), [&](const cmaps::ProgressCallback& progress) {
         try {

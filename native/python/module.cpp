@@ -519,9 +519,12 @@ std::pair<py::array_t<std::int32_t>, py::array_t<double>> to_numpy(const std::ve
 }
 
 py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, const py::handle& pairs_data, int grid,
-                          int optimize, std::uint64_t seed, int effort, int threads, const py::object& progress) {
+                          int optimize, int restarts, std::uint64_t seed, int effort, int threads,
+                          const py::object& progress) {
   cmaps::IntersurfaceOptions options;
   if (optimize < 0) raise(PyExc_ValueError, "optimize must be at least 0, got " + std::to_string(optimize));
+  if (restarts < 1) raise(PyExc_ValueError, "restarts must be at least 1, got " + std::to_string(restarts));
+  options.restarts = restarts;
   options.optimize_rounds = optimize;
   if (optimize == 0) options.correspondence_weight = 0;  // the plain composition
   options.sphere = sphere_options(seed, effort, threads, progress);
@@ -555,6 +558,7 @@ py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, co
   d["sphere_flipped"] = result.sphere_flipped;
   d["stretch_efficiency"] = py::make_tuple(result.efficiency_a, result.efficiency_b);
   d["steiner"] = py::make_tuple(result.steiner_a, result.steiner_b);
+  d["restart_dirichlet"] = py::array_t<double>(py::ssize_t(result.restart_dirichlet.size()), result.restart_dirichlet.data());
   d["seconds"] = seconds;
   d["base_vertices"] = result.base_vertices;
   d["base_triangles"] = result.base_triangles;
@@ -950,7 +954,7 @@ PYBIND11_MODULE(_native, m) {
         "like constrained_spherical_parameterization.");
   m.def("intersurface_map", &intersurface_map, py::arg("mesh_a"), py::arg("mesh_b"),
         py::arg("feature_pairs") = py::list(), py::kw_only(), py::arg("grid") = 64, py::arg("optimize") = 2,
-        py::arg("seed") = 1,
+        py::arg("restarts") = 1, py::arg("seed") = 1,
         py::arg("effort") = 1, py::arg("threads") = 2, py::arg("progress") = py::none(),
         "Inter-surface map between two closed meshes of equal genus (genus 0: through a consistent spherical\n"
         "parameterization of both; genus >= 1: through a consistent partition into triangular patches,\n"
@@ -963,6 +967,8 @@ PYBIND11_MODULE(_native, m) {
         "(area-normalized, optimum 4, each source triangle mapped linearly onto its corners' images),\n"
         "'flipped', 'degenerate', and 'composition_dirichlet' before the distortion optimization (optimize:\n"
         "its rounds, 0 = no optimization: for genus 0 the plain composition of the spherical maps);\n"
+        "genus 0: 'restart_dirichlet', the energy (both directions summed) of each of the `restarts` maps\n"
+        "computed with seeds seed, seed + 1, ...; the least distorted one is returned;\n"
         "'sphere_flipped', 'stretch_efficiency' and 'steiner' of the two spherical maps (genus 0);\n"
         "'seconds' and per stage. Raises InvalidMeshError for different genus,\n"
         "non-manifold meshes or bad pairs, Cancelled when progress returns False.");

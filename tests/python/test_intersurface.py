@@ -90,6 +90,23 @@ def test_zero_features_get_a_valid_map(native):
         native.intersurface_map(a, b, [], optimize=-1)
 
 
+def test_restarts_keep_the_least_distorted_map(native):
+    """Restart k is the map computed with seed + k; the one with the lowest summed energy is returned."""
+    a, b = native.read_mesh(str(SPOT)), native.read_mesh(str(SPHERE))
+    pairs = [[0, 0], [100, 50], [200, 300], [300, 350]]
+    singles = [native.intersurface_map(a, b, pairs, effort=0, seed=seed) for seed in (5, 6, 7)]
+    energies = [sum(r["symmetric_dirichlet"]) for r in singles]
+    best = native.intersurface_map(a, b, pairs, effort=0, seed=5, restarts=3)
+    assert best["restart_dirichlet"].tolist() == energies
+    assert len(set(energies)) > 1  # the seeds do lead to different maps
+    winner = singles[int(np.argmin(energies))]
+    assert best["symmetric_dirichlet"] == winner["symmetric_dirichlet"]
+    assert (best["a_to_b_triangle"] == winner["a_to_b_triangle"]).all()
+    assert (best["b_on_a"] == winner["b_on_a"]).all()
+    with pytest.raises(ValueError, match="restarts must be at least 1, got 0"):
+        native.intersurface_map(a, b, pairs, restarts=0)
+
+
 def test_genus_one_map(native):
     a, b = native.read_mesh(str(TORUS)), native.read_mesh(str(KNOT))
     r = native.intersurface_map(a, b, [[0, 7]])
@@ -192,6 +209,10 @@ def test_cli_usage(cmaps_binary, tmp_path):
     assert result.returncode == 2 and "--optimize expects an integer in [0, 100], got '-1'" in result.stderr
     result = run(cmaps_binary, "sphere", SPOT, "-o", tmp_path / "s.obj", "--optimize", "1")
     assert result.returncode == 2 and "sphere takes no --optimize (only intersurface and transfer do)" in result.stderr
+    result = run(cmaps_binary, "intersurface", SPOT, SPHERE, "-o", tmp_path / "out", "--restarts", "0")
+    assert result.returncode == 2 and "--restarts expects an integer in [1, 100], got '0'" in result.stderr
+    result = run(cmaps_binary, "consistent", SPOT, SPHERE, "-o", tmp_path / "out", "--restarts", "2")
+    assert result.returncode == 2 and "consistent takes no --restarts (only intersurface and transfer do)" in result.stderr
 
 
 def test_continue_across_seams(native):

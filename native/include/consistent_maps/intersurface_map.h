@@ -72,6 +72,13 @@ struct IntersurfaceOptions {
   // weight on its consistency with B's map (0: not at all). With neither,
   // the result is the plain composition.
   double correspondence_weight = 0.25;
+  // Genus 0: the whole map is computed this many times, with seeds seed,
+  // seed + 1, ...; the one with the lowest symmetric Dirichlet energy (both
+  // directions summed) is kept. The optimization is local, and which minimum
+  // it ends in depends on the starting parameterization: with few features
+  // the spread is wide (sets/cactus, 8 features: ground-truth error 2.9-7.9 %
+  // over four seeds), and the energy ranks the maps like the true error does.
+  int restarts = 1;
   // Also map every triangle corner of A (IntersurfaceResult::a_corners_to_b),
   // for transferring per-corner values such as texture coordinates (genus 0
   // only for now: InvalidInput otherwise).
@@ -120,6 +127,8 @@ struct IntersurfaceResult {
   double efficiency_a = 0, efficiency_b = 0;
   int sphere_flipped = 0;
   int steiner_a = 0, steiner_b = 0;
+  // Genus 0: per restart, the final symmetric Dirichlet energy A -> B plus B -> A.
+  std::vector<double> restart_dirichlet;
   MapDistortion composition_a_to_b, composition_b_to_a;
   // Wall time per stage: unconstrained maps for added features (genus 0),
   // the consistent partition (genus >= 1), the consistent or patch

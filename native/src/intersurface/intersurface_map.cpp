@@ -369,6 +369,89 @@ std::optional<UsedVertices> drop_unused(const TriangleMesh& mesh) {
   return u;
 }
 
+// Genus 0: the composition of a consistent spherical parameterization of
+// the pair, refitted and optimized for symmetric distortion (see the options).
+void map_through_sphere_pair(const TriangleMesh& a, const TriangleMesh& b, const std::vector<FeaturePair>& features,
+                             IntersurfaceResult& result, const IntersurfaceOptions& options,
+                             const ProgressCallback& progress) {
+  // Too few pairs for a constrained map: add some from the aligned unconstrained maps.
+  auto stage = Clock::now();
+  if (features.size() < 3) {
+    add_features(a, b, result.features, 4, options.sphere, slice(progress, 0, 0.2));
+    result.added_features = int(result.features.size() - features.size());
+  }
+  result.seconds_features = seconds_since(stage);
+
+  stage = Clock::now();
+  std::vector<ConsistentMember> members{{a, {}}, {b, {}}};
+  for (const FeaturePair& f : result.features) members[0].features.push_back(f.a), members[1].features.push_back(f.b);
+  ConsistentOptions consistent;
+  consistent.sphere = options.sphere;
+  consistent.grid = options.grid;
+  const ConsistentResult maps = consistent_spherical_parameterization(
+      members, consistent, slice(progress, features.size() < 3 ? 0.2 : 0, 0.7));
+  result.seconds_parameterize = seconds_since(stage);
+  ConstrainedResult map_a = maps.members[0], map_b = maps.members[1];  // the optimization moves their sphere points
+  std::vector<std::pair<int, int>> a_to_b, b_to_a;
+  for (const FeaturePair& f : result.features) a_to_b.push_back({f.a, f.b}), b_to_a.push_back({f.b, f.a});
+  const int threads = options.sphere.threads;
+  const auto compose = [&] {
+    result.a_to_b = map_through_sphere(map_a.sphere, b, map_b, a_to_b, threads);
+    result.b_to_a = map_through_sphere(map_b.sphere, a, map_a, b_to_a, threads);
+  };
+  const auto measure = [&](MapDistortion& forward, MapDistortion& backward) {
+    forward = measure_intersurface_map(a, b, result.a_to_b);
+    backward = measure_intersurface_map(b, a, result.b_to_a);
+  };
+  const bool refit = options.correspondence_weight > 0;
+  const bool optimize = options.optimize_rounds > 0 && options.optimize_sweeps > 0;
+
+  stage = Clock::now();
+  if (refit || optimize) {
+    compose();
+    measure(result.composition_a_to_b, result.composition_b_to_a);
+  }
+  if (refit) {
+    // A's map again, now also consistent with B's (coarse to fine), kept
+    // only if the map improves (it cannot for a copy of B, mapped exactly).
+    const ParameterizedSurface pb = parameterized_surface(b, map_b);
+    map_a = parameterize_to_locations(members[0], maps.feature_locations, options.sphere, slice(progress, 0.7, 0.8),
+                                      ReferenceMap{&pb.surface, &pb.sphere, options.correspondence_weight});
+    compose();
+    MapDistortion forward, backward;
+    measure(forward, backward);
+    if (!(forward.symmetric_dirichlet + backward.symmetric_dirichlet <
+          result.composition_a_to_b.symmetric_dirichlet + result.composition_b_to_a.symmetric_dirichlet))
+      map_a = maps.members[0];
+  }
+  if (optimize) optimize_composition(a, map_a, b, map_b, result.features, options, slice(progress, 0.8, 0.95));
+  result.steiner_a = int(map_a.steiner.size());
+  result.steiner_b = int(map_b.steiner.size());
+  result.seconds_optimize = seconds_since(stage);
+  for (const auto& [mesh, map, efficiency] :
+       {std::tuple<const TriangleMesh&, const ConstrainedResult&, double&>{a, map_a, result.efficiency_a},
+        {b, map_b, result.efficiency_b}}) {
+    const ParameterizedSurface p = parameterized_surface(mesh, map);
+    const SphericalMapReport report = measure_spherical_map(p.surface, p.sphere);
+    efficiency = report.efficiency;
+    result.sphere_flipped += report.flipped;
+  }
+
+  stage = Clock::now();
+  if (progress && !progress(0.95, "locating vertices on the other mesh")) throw Cancelled();
+  compose();
+  if (options.corner_images) result.a_corners_to_b = map_through_sphere(corner_directions(a, map_a), b, map_b, {}, threads);
+  result.a_on_b = surface_positions(b, result.a_to_b);
+  result.b_on_a = surface_positions(a, result.b_to_a);
+  result.seconds_locate = seconds_since(stage);
+
+  stage = Clock::now();
+  measure(result.distortion_a_to_b, result.distortion_b_to_a);
+  if (!refit && !optimize)
+    result.composition_a_to_b = result.distortion_a_to_b, result.composition_b_to_a = result.distortion_b_to_a;
+  result.seconds_measure = seconds_since(stage);
+}
+
 }  // namespace
 
 std::vector<Vec3> surface_positions(const TriangleMesh& target, const std::vector<SurfacePoint>& points) {
@@ -495,83 +578,22 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
   }
   if (options.grid < 2 || options.grid % 2 != 0)
     throw InvalidInput("grid must be even and at least 2, got " + std::to_string(options.grid));
+  if (options.restarts < 1) throw InvalidInput("restarts must be at least 1, got " + std::to_string(options.restarts));
 
-  // Too few pairs for a constrained map: add some from the aligned unconstrained maps.
-  auto stage = Clock::now();
-  if (features.size() < 3) {
-    add_features(a, b, result.features, 4, options.sphere, slice(progress, 0, 0.2));
-    result.added_features = int(result.features.size() - features.size());
+  // Each restart parameterizes with the next seed; the optimization ends in
+  // a different local minimum each time, and the least distorted map wins.
+  std::vector<double> energies;
+  IntersurfaceResult best;
+  for (int r = 0, restarts = options.restarts; r < restarts; ++r) {
+    IntersurfaceOptions attempt = options;
+    attempt.sphere.seed = options.sphere.seed + r;
+    IntersurfaceResult tried = result;
+    map_through_sphere_pair(a, b, features, tried, attempt, slice(progress, double(r) / restarts, (r + 1.0) / restarts));
+    energies.push_back(tried.distortion_a_to_b.symmetric_dirichlet + tried.distortion_b_to_a.symmetric_dirichlet);
+    if (energies.back() <= *std::min_element(energies.begin(), energies.end())) best = std::move(tried);
   }
-  result.seconds_features = seconds_since(stage);
-
-  stage = Clock::now();
-  std::vector<ConsistentMember> members{{a, {}}, {b, {}}};
-  for (const FeaturePair& f : result.features) members[0].features.push_back(f.a), members[1].features.push_back(f.b);
-  ConsistentOptions consistent;
-  consistent.sphere = options.sphere;
-  consistent.grid = options.grid;
-  const ConsistentResult maps = consistent_spherical_parameterization(
-      members, consistent, slice(progress, features.size() < 3 ? 0.2 : 0, 0.7));
-  result.seconds_parameterize = seconds_since(stage);
-  ConstrainedResult map_a = maps.members[0], map_b = maps.members[1];  // the optimization moves their sphere points
-  std::vector<std::pair<int, int>> a_to_b, b_to_a;
-  for (const FeaturePair& f : result.features) a_to_b.push_back({f.a, f.b}), b_to_a.push_back({f.b, f.a});
-  const int threads = options.sphere.threads;
-  const auto compose = [&] {
-    result.a_to_b = map_through_sphere(map_a.sphere, b, map_b, a_to_b, threads);
-    result.b_to_a = map_through_sphere(map_b.sphere, a, map_a, b_to_a, threads);
-  };
-  const auto measure = [&](MapDistortion& forward, MapDistortion& backward) {
-    forward = measure_intersurface_map(a, b, result.a_to_b);
-    backward = measure_intersurface_map(b, a, result.b_to_a);
-  };
-  const bool refit = options.correspondence_weight > 0;
-  const bool optimize = options.optimize_rounds > 0 && options.optimize_sweeps > 0;
-
-  stage = Clock::now();
-  if (refit || optimize) {
-    compose();
-    measure(result.composition_a_to_b, result.composition_b_to_a);
-  }
-  if (refit) {
-    // A's map again, now also consistent with B's (coarse to fine), kept
-    // only if the map improves (it cannot for a copy of B, mapped exactly).
-    const ParameterizedSurface pb = parameterized_surface(b, map_b);
-    map_a = parameterize_to_locations(members[0], maps.feature_locations, options.sphere, slice(progress, 0.7, 0.8),
-                                      ReferenceMap{&pb.surface, &pb.sphere, options.correspondence_weight});
-    compose();
-    MapDistortion forward, backward;
-    measure(forward, backward);
-    if (!(forward.symmetric_dirichlet + backward.symmetric_dirichlet <
-          result.composition_a_to_b.symmetric_dirichlet + result.composition_b_to_a.symmetric_dirichlet))
-      map_a = maps.members[0];
-  }
-  if (optimize) optimize_composition(a, map_a, b, map_b, result.features, options, slice(progress, 0.8, 0.95));
-  result.steiner_a = int(map_a.steiner.size());
-  result.steiner_b = int(map_b.steiner.size());
-  result.seconds_optimize = seconds_since(stage);
-  for (const auto& [mesh, map, efficiency] :
-       {std::tuple<const TriangleMesh&, const ConstrainedResult&, double&>{a, map_a, result.efficiency_a},
-        {b, map_b, result.efficiency_b}}) {
-    const ParameterizedSurface p = parameterized_surface(mesh, map);
-    const SphericalMapReport report = measure_spherical_map(p.surface, p.sphere);
-    efficiency = report.efficiency;
-    result.sphere_flipped += report.flipped;
-  }
-
-  stage = Clock::now();
-  if (progress && !progress(0.95, "locating vertices on the other mesh")) throw Cancelled();
-  compose();
-  if (options.corner_images) result.a_corners_to_b = map_through_sphere(corner_directions(a, map_a), b, map_b, {}, threads);
-  result.a_on_b = surface_positions(b, result.a_to_b);
-  result.b_on_a = surface_positions(a, result.b_to_a);
-  result.seconds_locate = seconds_since(stage);
-
-  stage = Clock::now();
-  measure(result.distortion_a_to_b, result.distortion_b_to_a);
-  if (!refit && !optimize)
-    result.composition_a_to_b = result.distortion_a_to_b, result.composition_b_to_a = result.distortion_b_to_a;
-  result.seconds_measure = seconds_since(stage);
+  result = std::move(best);
+  result.restart_dirichlet = std::move(energies);
   if (progress && !progress(1, "done")) throw Cancelled();
   result.seconds = seconds_since(start);
   return result;
