@@ -78,7 +78,9 @@ commands:
   intersurface
            map two closed meshes of the same genus onto each other (genus 0
            through a common sphere, genus >= 1 through a consistent partition
-           into patches), each feature of A exactly onto its partner on B. Writes
+           into patches), each feature of A exactly onto its partner on B.
+           Genus-0 meshes may have holes, each ringed by at least 3 features
+           (the same pairs around corresponding holes). Writes
            DIR/A_to_B.txt and DIR/B_to_A.txt (one line per source vertex: the
            target triangle index in the target's input triangle order, then
            three barycentric weights) and DIR/A_on_B.obj, DIR/B_on_A.obj (the

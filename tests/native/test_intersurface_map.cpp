@@ -205,6 +205,14 @@ TEST(IntersurfaceMap, NonManifoldIsRefused) {
   EXPECT_NE(message.find("non-manifold"), std::string::npos) << message;
 }
 
+TEST(IntersurfaceMap, HolesOnlyForGenusZero) {
+  TriangleMesh torus = read_mesh(shared_mesh("higher-genus/torus.obj"));
+  torus.triangles.pop_back();  // one hole: genus 1 with a boundary
+  const std::string message = error_of(torus, torus, {});
+  EXPECT_EQ(message.rfind("A: mesh has ", 0), 0u) << message;
+  EXPECT_NE(message.find("closed or (genus 0 only) with holes"), std::string::npos) << message;
+}
+
 TEST(IntersurfaceMap, FeaturesOutOfRangeOrRepeatedAreRefused) {
   const TriangleMesh a = test::octahedron(), b = test::octahedron();
   EXPECT_EQ(error_of(a, b, {{0, 0}, {1, 6}, {2, 2}}),

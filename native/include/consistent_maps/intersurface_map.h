@@ -140,8 +140,12 @@ struct IntersurfaceResult {
 
 // Vertices that no triangle uses are left out of the computation; each takes
 // the image of the nearest used vertex (a feature on one is refused).
-// Throws TopologyError for a mesh that is not one closed, manifold,
-// consistently oriented surface (naming A or B), for meshes of different
+// Genus 0 meshes may have holes (thesis 3.5), each ringed by at least 3
+// features, the same pairs around corresponding holes: boundaries map onto
+// boundaries; the map is then the plain composition (no refit, no
+// optimization, which do not keep boundary vertices on their arcs yet).
+// Throws TopologyError for a mesh that is not one manifold, consistently
+// oriented surface, closed or genus 0 with holes (naming A or B), for meshes of different
 // genus ("A has genus 1, B has genus 2; an inter-surface map needs equal
 // genus"); InvalidInput for a feature vertex out of range or used by two
 // pairs; Error when a genus >= 1 partition gets stuck; Cancelled when

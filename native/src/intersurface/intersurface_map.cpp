@@ -44,12 +44,14 @@ ProgressCallback slice(const ProgressCallback& progress, double begin, double en
 // TopologyError naming the mesh (`name` is "A" or "B") otherwise.
 int checked_genus(const TriangleMesh& mesh, const std::string& name) {
   const MeshReport r = check_mesh(mesh);
-  const bool usable = r.vertices > 0 && r.genus >= 0 && r.manifold() && r.closed() && r.components == 1 &&
-                      r.referenced_vertices == r.vertices && r.inconsistently_oriented_edges == 0 &&
-                      r.non_finite_vertices == 0 && r.out_of_range_indices == 0;
+  const bool usable = r.vertices > 0 && r.genus >= 0 && r.manifold() && (r.closed() || r.genus == 0) &&
+                      r.components == 1 && r.referenced_vertices == r.vertices &&
+                      r.inconsistently_oriented_edges == 0 && r.non_finite_vertices == 0 &&
+                      r.out_of_range_indices == 0;
   if (!usable)
     throw TopologyError(name + ": mesh has " + summarize(r) +
-                        "; an inter-surface map needs one closed, manifold, consistently oriented surface");
+                        "; an inter-surface map needs one manifold, consistently oriented surface, closed or (genus "
+                        "0 only) with holes");
   return r.genus;
 }
 
@@ -187,9 +189,30 @@ SurfacePoint to_input(const TriangleMesh& mesh, const ConstrainedResult& map, co
 std::vector<SurfacePoint> map_through_sphere(const std::vector<Vec3>& source_sphere, const TriangleMesh& target,
                                              const ConstrainedResult& target_map,
                                              const std::vector<std::pair<int, int>>& exact, int threads) {
-  const ParameterizedSurface surface = parameterized_surface(target, target_map);
+  // Holes are closed by their temporary fans so that every direction lands
+  // somewhere; one landing in a fan (the boundaries are chords of the arcs
+  // both meshes' holes share, so only slivers along them) moves onto the
+  // fan's boundary edge, on the real triangle across it.
+  const ParameterizedSurface surface = parameterized_surface(target, target_map, /*close_holes=*/true);
   const SphereLocator locator(surface.sphere, surface.surface.triangles);
-  const std::vector<SphereLocation> located = locator.locate_all(source_sphere, threads);
+  std::vector<SphereLocation> located = locator.locate_all(source_sphere, threads);
+  const int real = int(target_map.triangles.size()), first_centre = int(surface.sphere.size()) - target_map.holes;
+  std::map<std::pair<int, int>, int> beside;  // boundary edge (u, v) of a fan -> the real triangle with edge (v, u)
+  for (int f = 0; f < real; ++f)
+    for (int k = 0; k < 3; ++k) beside[{target_map.triangles[f][(k + 1) % 3], target_map.triangles[f][k]}] = f;
+  for (SphereLocation& at : located) {
+    if (at.triangle < real) continue;
+    const Triangle& fan = surface.surface.triangles[at.triangle];
+    const int k = fan[0] >= first_centre ? 0 : fan[1] >= first_centre ? 1 : 2;
+    const int u = fan[(k + 1) % 3], v = fan[(k + 2) % 3];
+    double wu = at.barycentric[(k + 1) % 3], wv = at.barycentric[(k + 2) % 3];
+    if (!(wu + wv > 0)) wu = wv = 1;
+    const auto edge = beside.find({u, v});
+    if (edge == beside.end()) throw Error("internal error: a hole's boundary edge has no triangle");
+    at.triangle = edge->second;
+    const Triangle& t = target_map.triangles[at.triangle];
+    for (int j = 0; j < 3; ++j) at.barycentric[j] = t[j] == u ? wu / (wu + wv) : t[j] == v ? wv / (wu + wv) : 0;
+  }
   std::vector<SurfacePoint> points(located.size());
   parallel_for(int(located.size()), threads, [&](int i) { points[i] = to_input(target, target_map, located[i]); });
 
@@ -403,8 +426,11 @@ void map_through_sphere_pair(const TriangleMesh& a, const TriangleMesh& b, const
     forward = measure_intersurface_map(a, b, result.a_to_b);
     backward = measure_intersurface_map(b, a, result.b_to_a);
   };
-  const bool refit = options.correspondence_weight > 0;
-  const bool optimize = options.optimize_rounds > 0 && options.optimize_sweeps > 0;
+  // With holes, the plain composition: the refit and the optimization do
+  // not yet keep boundary vertices on their arcs.
+  const bool closed = map_a.holes == 0 && map_b.holes == 0;
+  const bool refit = options.correspondence_weight > 0 && closed;
+  const bool optimize = options.optimize_rounds > 0 && options.optimize_sweeps > 0 && closed;
 
   stage = Clock::now();
   if (refit || optimize) {
@@ -569,7 +595,7 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
   }
   for (const auto& [mesh, name] : {std::pair<const TriangleMesh&, const char*>{a, "A"}, {b, "B"}}) {
     try {
-      require_sphere_topology(mesh);
+      require_sphere_topology(mesh, /*allow_holes=*/true);
     } catch (const TopologyError& e) {
       throw TopologyError(std::string(name) + ": " + e.what());
     } catch (const InvalidInput& e) {

@@ -1,0 +1,115 @@
+"""Inter-surface maps of genus 0 (issue 5): `cmaps intersurface` through the common sphere on the issue's
+pairs: sets/cat-lion with its 20 landmarks (agreement with the approximate dense map lion2cat), sets/cactus
+pose 0 to poses 1-4 with 8 features (true correspondence: shared vertex order), genus0/cow - large/horse and
+genus0/bunny - large/gargoyle with the hand-picked features of bench/features. Rewrites the
+`intersurface-sphere-benchmark` section of BENCHMARKS.md.
+
+    python3 bench/intersurface_sphere_benchmark.py   (after building build/cmaps)
+"""
+import json
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from bench_common import MESHES, ROOT, machine, run_cmaps, write_section
+
+sys.path.insert(0, str(ROOT / "addon"))
+from consistent_maps import _native  # noqa: E402
+
+CACTUS = MESHES / "sets" / "cactus"
+CACTUS_RESTARTS = (1, 6)
+
+
+def farthest_points(vertices, count):
+    """As bench/consistent_benchmark.py: farthest-point sampling from vertex 0."""
+    chosen, distance = [0], np.full(len(vertices), np.inf)
+    while len(chosen) < count:
+        distance = np.minimum(distance, np.linalg.norm(vertices - vertices[chosen[-1]], axis=1))
+        chosen.append(int(np.argmax(distance)))
+    return chosen
+
+
+def pair_features(directory, file, a, b):
+    """Columns a and b of a set's feature file, as intersurface pairs (features one of them lacks dropped)."""
+    names = json.loads((ROOT / "bench" / "features" / file).read_text())
+    pairs = {name: [v[a], v[b]] for name, v in names.items() if v[a] is not None and v[b] is not None}
+    path = Path(directory) / f"{file}.{a}.{b}.json"
+    path.write_text(json.dumps(pairs))
+    return str(path), len(pairs)
+
+
+def read_obj_vertices(path):
+    return np.array([line.split()[1:4] for line in open(path) if line.startswith("v ")], float)
+
+
+def diagonal(vertices):
+    return float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0)))
+
+
+def row(name, result, features, truth=""):
+    d, c = result["symmetric_dirichlet"], result["composition_dirichlet"]
+    return (f"| {name} | {result['faces'][0]} / {result['faces'][1]} | {features} | "
+            f"{len(result['restart_dirichlet'])} | {result['wall']:.1f} ({result['seconds_parameterize']:.1f} / "
+            f"{result['seconds_optimize']:.1f}) | {result['peak_mb']:.0f} | {d[0]:.1f} / {d[1]:.1f} | "
+            f"{c[0]:.1f} / {c[1]:.1f} | {result['flipped'][0]} / {result['flipped'][1]} | "
+            f"{result['sphere_flipped']} | {truth} |")
+
+
+def main():
+    lines = [f"Measured {machine()} (machine shared with other work), `cmaps intersurface A B --features FILE -o DIR "
+             "--json [--restarts K]`, effort 1, default `--optimize 2`. Seconds: wall time of the whole command "
+             "(parameterize / optimize, summed over restarts). Symmetric Dirichlet by vertex sampling (each source "
+             "triangle onto the triangle its corners' images form, target scaled to the source's area; optimum 4); "
+             "\"plain\": the composition before refitting and optimization (of the kept restart). Ground truth: mean "
+             "distance between a vertex's image and its true partner, % of the target's bounding-box diagonal "
+             "(target < 2 %).", "",
+             "| pair | faces | features | restarts | seconds (parameterize / optimize) | peak MB | symmetric Dirichlet "
+             "A->B / B->A | plain | flipped samples | flipped on the sphere | ground truth A->B / B->A |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
+
+    def emit(line):
+        lines.append(line)
+        print(line, flush=True)
+
+    with tempfile.TemporaryDirectory() as tmp:
+        out = tmp + "/out"
+        cat_lion = MESHES / "sets" / "cat-lion"
+        landmarks = np.loadtxt(cat_lion / "landmarks.txt", dtype=np.int64)
+        features = Path(tmp) / "landmarks.json"
+        features.write_text(json.dumps({f"l{k}": [int(a), int(b)] for k, (a, b) in enumerate(landmarks)}))
+        result = run_cmaps("intersurface", str(cat_lion / "cat-00.off"), str(cat_lion / "lion-00.off"),
+                           "--features", str(features), "-o", out)
+        cat = _native.read_mesh(str(cat_lion / "cat-00.off"))[0]
+        lion2cat = np.loadtxt(cat_lion / "lion2cat", dtype=np.int64)
+        error = np.linalg.norm(read_obj_vertices(out + "/B_on_A.obj") - cat[lion2cat], axis=1).mean() / diagonal(cat)
+        emit(row("sets/cat-lion", result, "20 landmarks", f"lion -> cat vs lion2cat: {100 * error:.1f} %"))
+
+        rest = _native.read_mesh(str(CACTUS / "cactus0.ply"))[0]
+        chosen = farthest_points(rest, 8)
+        features = Path(tmp) / "cactus.json"
+        features.write_text(json.dumps({f"f{k}": [v, v] for k, v in enumerate(chosen)}))
+        for pose in range(1, 5):
+            other = _native.read_mesh(str(CACTUS / f"cactus{pose}.ply"))[0]
+            for restarts in CACTUS_RESTARTS:
+                result = run_cmaps("intersurface", str(CACTUS / "cactus0.ply"), str(CACTUS / f"cactus{pose}.ply"),
+                                   "--features", str(features), "-o", out, "--restarts", str(restarts))
+                forward = np.linalg.norm(read_obj_vertices(out + "/A_on_B.obj") - other, axis=1).mean() / diagonal(other)
+                backward = np.linalg.norm(read_obj_vertices(out + "/B_on_A.obj") - rest, axis=1).mean() / diagonal(rest)
+                emit(row(f"sets/cactus 0 - {pose}", result, "8 (farthest points)",
+                         f"{100 * forward:.1f} % / {100 * backward:.1f} %"))
+
+        for a, b, file, (column_a, column_b) in [
+                ("genus0/cow.off", "large/horse.ply", "animals.json", (1, 0)),
+                ("genus0/bunny.off", "large/gargoyle.off", "bunny_gargoyle.json", (0, 1))]:
+            features, count = pair_features(tmp, file, column_a, column_b)
+            result = run_cmaps("intersurface", str(MESHES / a), str(MESHES / b), "--features", features, "-o", out)
+            emit(row(f"{a} - {b}", result, f"{count} (bench/features/{file})", "n/a"))
+            result = run_cmaps("intersurface", str(MESHES / a), str(MESHES / b), "-o", out)
+            emit(row(f"{a} - {b}", result, "0 (4 added)", "n/a"))
+    write_section("intersurface-sphere-benchmark", lines)
+
+
+if __name__ == "__main__":
+    main()
