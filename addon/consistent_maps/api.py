@@ -71,16 +71,19 @@ class Task:
     name: str
     arrays: meshdata.MeshArrays
     feature_vertices: list  # vertex of each of the set's features in Outcome.feature_names order, -1: lacks it
+    genus: int = 0
 
 
 @dataclass
 class Outcome:
     """What a run computed, for apply(): per task (sphere, stats, surface, refinement), surface being the
     (vertices, triangles, sphere) of the map and refinement (input triangle of each surface triangle,
-    Steiner vertices, Steiner weights); and the feature locations common to the set."""
+    Steiner vertices, Steiner weights); and the feature locations common to the set. Two objects of
+    genus >= 1 are mapped onto each other directly: per task (None, stats, None, None) and pair_maps."""
     members: list
     feature_names: list
     feature_locations: list = field(default_factory=list)
+    pair_maps: list = None  # two objects of genus >= 1: per task (triangle (n,), weights (n, 3)) on the other
 
 
 def _object_problems(objects):
@@ -112,19 +115,33 @@ def prepare(objects):
     found = _object_problems(objects)
     if found:
         raise ComputeError("\n".join(found))
-    tasks = []
+    tasks, reports = [], []
     names = _features.shared_names(objects)
     for obj in objects:
         arrays = meshdata.extract(obj)
-        report = native.check_mesh(arrays.vertices, arrays.triangles)
-        if report["sphere_error"]:
-            found.append(_mesh_problem(obj.name, report))
+        reports.append(native.check_mesh(arrays.vertices, arrays.triangles))
         placed = _features.features(obj)
-        tasks.append(Task(obj.name, arrays, [placed.get(name, -1) for name in names]))
-    found += _features.problems(objects)
+        tasks.append(Task(obj.name, arrays, [placed.get(name, -1) for name in names], reports[-1]["genus"]))
+    handled = [_has_handles(r) for r in reports]
+    pair = len(objects) == 2 and all(handled)
+    if pair and reports[0]["genus"] != reports[1]["genus"]:
+        found.append(f"'{objects[0].name}' has genus {reports[0]['genus']} and '{objects[1].name}' genus "
+                     f"{reports[1]['genus']}: objects with handles are mapped in pairs of equal genus")
+    for obj, report, handles in zip(objects, reports, handled):
+        if report["sphere_error"] and not pair:
+            hint = (" (two objects of equal genus can be mapped onto each other: make a set of just those two)"
+                    if handles else "")
+            found.append(_mesh_problem(obj.name, report) + hint)
+    found += _features.problems(objects, minimum=0 if pair else _features.MIN_SHARED)
     if found:
         raise ComputeError("\n".join(found))
     return tasks
+
+
+def _has_handles(report):
+    """Whether a mesh is one closed, clean surface of genus >= 1 (mapped onto a partner directly)."""
+    return (report["genus"] >= 1 and report["closed"] and report["manifold"] and report["components"] == 1
+            and report["referenced_vertices"] == report["vertices"] and report["degenerate_faces"] == 0)
 
 
 def feature_names(objects):
@@ -145,6 +162,8 @@ def run(tasks, names, *, effort=1, seed=1, threads=None, progress=None):
     def forward(fraction, stage):
         return progress is None or progress(fraction, stage) is not False
     try:
+        if len(tasks) == 2 and tasks[0].genus >= 1:
+            return _run_pair(tasks, names, effort=effort, seed=seed, threads=threads, progress=forward)
         if len(tasks) == 1:
             arrays = tasks[0].arrays
             sphere_, stats = native.spherical_parameterization(
@@ -166,6 +185,23 @@ def run(tasks, names, *, effort=1, seed=1, threads=None, progress=None):
     return Outcome(members, list(names), list(result["feature_locations"]))
 
 
+def _run_pair(tasks, names, **options):
+    """Two objects of equal genus >= 1: the inter-surface map (consistent partition, Schreiner et al.)."""
+    a, b = tasks
+    pairs = [[i, j] for i, j in zip(a.feature_vertices, b.feature_vertices) if i >= 0 and j >= 0]
+    try:
+        r = native.intersurface_map((a.arrays.vertices, a.arrays.triangles), (b.arrays.vertices, b.arrays.triangles),
+                                    np.array(pairs, dtype=np.int64).reshape(-1, 2), **options)
+    except native.InvalidMeshError as e:  # the library calls them A and B
+        raise ComputeError(re.sub(r"\b([AB])\b(?=:| has| \()", lambda m: f"'{tasks['AB'.index(m.group(1))].name}'",
+                                  str(e))) from e
+    stats = [{"genus": r["genus"], "symmetric_dirichlet": float(d), "seconds": r["seconds"], "bijective": True}
+             for d in r["symmetric_dirichlet"]]
+    return Outcome([(None, s, None, None) for s in stats], list(names),
+                   pair_maps=[(r["a_to_b_triangle"], r["a_to_b_barycentric"]),
+                              (r["b_to_a_triangle"], r["b_to_a_barycentric"])])
+
+
 def apply(tasks, outcome):
     """Stores the outcome on the objects and the scene, if no object changed meanwhile; returns {name: stats}."""
     import bpy
@@ -177,7 +213,11 @@ def apply(tasks, outcome):
         raise ComputeError(f"{', '.join(repr(n) for n in changed)} changed during the computation: "
                            f"nothing was stored, press Compute again")
     token = uuid.uuid4().hex
-    for task, obj, (sphere_, stats, surface, refinement) in zip(tasks, objects, outcome.members):
+    for i, (task, obj, (sphere_, stats, surface, refinement)) in enumerate(zip(tasks, objects, outcome.members)):
+        if outcome.pair_maps:
+            preview.hide(obj)
+            results.store_pair(obj.data, *outcome.pair_maps[i], task.arrays.fingerprint, stats, token)
+            continue
         results.store(obj.data, sphere_, task.arrays.fingerprint, stats, surface, refinement, token)
         if preview.is_shown(obj):
             preview.show(obj)
@@ -208,7 +248,9 @@ def _remesh_problems(objects, resolution, scene):
         f"The remesh resolution must be even and at least 2, not {resolution}"]
     for obj in objects:
         state = result_state(obj) if obj.type == 'MESH' else results.NONE
-        if state != results.CURRENT or results.surface(obj.data) is None:
+        if state == results.CURRENT and results.pair_map(obj.data) is not None:
+            found += maps.sphere_problems([obj])
+        elif state != results.CURRENT or results.surface(obj.data) is None:
             found.append(f"'{obj.name}' has no {'current ' if state == results.STALE else ''}result: press Compute")
         elif results.set_token(obj.data) != results.set_token(scene):
             found.append(f"'{obj.name}' was not computed with the set last computed here: press Compute")

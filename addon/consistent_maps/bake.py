@@ -177,7 +177,7 @@ def bake(source, target, size=1024, margin=16):
 
 
 def _normal_problems(source, target, size, align):
-    found = maps.problems([source, target])
+    found = maps.problems([source, target]) or maps.sphere_problems([source, target])
     if found:
         return found
     if align not in NORMAL_ALIGN:

@@ -185,11 +185,11 @@ def _listed(names, limit=4):
     return shown + (f" and {len(names) - limit} more" if len(names) > limit else "")
 
 
-def problems(objects):
+def problems(objects, minimum=MIN_SHARED):
     """Plain-language problems with the features of a set, each telling what to fix.
 
     A set of several objects needs: every CM: group placed (one vertex; an empty group is a feature
-    still to place), every feature on at least two objects, at least MIN_SHARED of the set's features on
+    still to place), every feature on at least two objects, at least `minimum` of the set's features on
     each object, and one object carrying all of them (it fixes where they lie on the common sphere).
     An object may lack a feature (no group at all): its map is left free there.
     """
@@ -214,9 +214,9 @@ def problems(objects):
                          f"points, so place it on at least one other object (Copy Names) or delete it")
     for obj, p in zip(objects, placed):
         own = [name for name in names if name in p]
-        if len(own) < MIN_SHARED:
+        if len(own) < minimum:
             found.append(f"'{obj.name}' has {len(own)} of the set's features ({_listed(own) or 'none'}); each "
-                         f"object needs at least {MIN_SHARED}: place more on it (Copy Names, then place them)")
+                         f"object needs at least {minimum}: place more on it (Copy Names, then place them)")
     if names and not any(all(name in p for name in names) for p in placed):
         lacking = [[name for name in names if name not in p] for p in placed]
         best = min(range(len(objects)), key=lambda i: len(lacking[i]))

@@ -18,7 +18,7 @@ def _object_problem(obj):
         return f"The result of '{obj.name}' is stale (the mesh changed): press Compute again"
     if state == results.NONE:
         return f"'{obj.name}' has no result: add it to the set and press Compute"
-    if results.refinement(obj.data) is None:
+    if results.refinement(obj.data) is None and results.pair_map(obj.data) is None:
         return f"The result of '{obj.name}' predates maps between objects: press Compute again"
     return None
 
@@ -44,6 +44,13 @@ def check(objects):
         raise MapError("\n".join(found))
 
 
+def sphere_problems(objects):
+    """Which of the (checked) objects have no spherical map, being mapped directly onto a partner."""
+    return [f"'{obj.name}' (genus {results.stats(obj.data).get('genus', '1 or more')}) is mapped directly onto "
+            f"its partner, without a sphere: this needs objects of genus 0" for obj in objects
+            if results.pair_map(obj.data) is not None]
+
+
 def parameterization(obj):
     """The stored map of a checked object as a mapping.Parameterization."""
     _, refined_triangles, refined_sphere = results.surface(obj.data)
@@ -60,12 +67,21 @@ def positions(mesh):
 
 def vertex_landing(source, target):
     """Where each vertex of source lands on target (checked objects)."""
+    pair = results.pair_map(source.data)
+    if pair is not None:
+        return mapping.Landing(*pair)
     return mapping.land(parameterization(target), results.sphere(source.data).astype(np.float64))
 
 
 def corner_landing(source, target):
     """Where each corner (loop) of target lands on source: from the target corner's own triangle, so
-    per-corner source values are taken from the matching side of a seam."""
+    per-corner source values are taken from the matching side of a seam. Objects mapped directly onto
+    each other (genus >= 1) have images of vertices only: a corner lands where its vertex does."""
+    pair = results.pair_map(target.data)
+    if pair is not None:
+        corner_vertices = np.empty(len(target.data.loops), dtype=np.int64)
+        target.data.loops.foreach_get("vertex_index", corner_vertices)
+        return mapping.Landing(pair[0][corner_vertices], pair[1][corner_vertices])
     target_map = parameterization(target)
     _, corners = meshdata.loop_triangles(target.data)
     first = np.empty(len(target.data.loops), dtype=np.int64)

@@ -37,6 +37,15 @@ def consistent_spherical_parameterization(meshes, features, *, effort, seed, thr
         meshes, features, effort=effort, seed=seed, threads=threads, progress=progress)
 
 
+def intersurface_map(mesh_a, mesh_b, feature_pairs, *, effort, seed, threads, progress):
+    """The map between two closed meshes of equal genus (genus >= 1: through a consistent partition,
+    Schreiner et al.), each pair [vertex of A, vertex of B] exactly onto each other: a dict with per vertex
+    of A its triangle of B and barycentric weights ('a_to_b_triangle', 'a_to_b_barycentric'), likewise
+    'b_to_a_*', and 'genus', 'symmetric_dirichlet' (A to B, B to A), 'seconds'."""
+    return _native.intersurface_map(mesh_a, mesh_b, feature_pairs, effort=effort, seed=seed, threads=threads,
+                                    progress=progress)
+
+
 def consistent_remesh(surfaces, feature_locations, resolution, *, threads):
     """Every (vertices, triangles, sphere) surface sampled on one octahedral grid of even resolution:
     dict with 'triangles' (shared), 'positions' (members, V, 3), 'sphere', 'feature_vertices' (k,)."""

@@ -178,10 +178,11 @@ class CM_PT_results(_Panel, bpy.types.Panel):
             if s.result == results.NONE or not stats:
                 row.label(text="not computed")
                 continue
-            row.label(text=f"{stats['efficiency']:.3f}, {stats['seconds']:.1f} s"
-                           + ("" if stats.get("bijective") else ", FLIPS"))
+            quality = (f"{stats['efficiency']:.3f}" if "efficiency" in stats
+                       else f"genus {stats.get('genus')}, {stats.get('symmetric_dirichlet', 0):.1f}")
+            row.label(text=f"{quality}, {stats['seconds']:.1f} s" + ("" if stats.get("bijective") else ", FLIPS"))
         if objects:
-            column.label(text="Efficiency (best 1), time")
+            column.label(text="Efficiency (best 1) or genus, distortion (best 4); time")
         row = layout.row(align=True)
         row.operator("consistent_maps.sphere_preview", text="Sphere", icon='SPHERE').show = True
         row.operator("consistent_maps.sphere_preview", text="Shape", icon='MESH_DATA').show = False

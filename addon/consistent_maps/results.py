@@ -10,6 +10,10 @@ attribute holds the sphere position of each of its vertices, and whose refinemen
 attributes tie it to the input: the input triangle each of its faces lies in, and
 each of its vertices as a weighted sum of (at most three) input vertices. On the
 scene: the set's token and its feature locations on the sphere, by name.
+
+Two objects of equal genus >= 1 have no sphere: each stores instead, per vertex,
+the triangle of its partner's loop triangles it maps into and the barycentric
+weights there (two point attributes), with the same fingerprint, numbers and token.
 """
 import numpy as np
 
@@ -22,14 +26,21 @@ LOCATIONS = "cm_feature_locations"
 INPUT_TRIANGLE = "cm_input_triangle"
 INPUT_VERTEX = "cm_input_vertex_{}"  # three INT point attributes, -1 for an unused slot
 INPUT_WEIGHTS = "cm_input_weights"
+PAIR_TRIANGLE = "cm_pair_triangle"  # INT point attribute: the partner's loop triangle
+PAIR_WEIGHTS = "cm_pair_weights"    # FLOAT_VECTOR point attribute: barycentric weights in it
 
 NONE, CURRENT, STALE = "NONE", "CURRENT", "STALE"
 
 
+def _remove(mesh, *names):
+    for name in names:
+        old = mesh.attributes.get(name)
+        if old is not None:
+            mesh.attributes.remove(old)
+
+
 def _write_sphere(mesh, sphere):
-    old = mesh.attributes.get(ATTRIBUTE)
-    if old is not None:
-        mesh.attributes.remove(old)
+    _remove(mesh, ATTRIBUTE)
     attribute = mesh.attributes.new(ATTRIBUTE, 'FLOAT_VECTOR', 'POINT')
     attribute.data.foreach_set("vector", np.ascontiguousarray(sphere, dtype=np.float32).ravel())
 
@@ -67,19 +78,50 @@ def _surface_mesh(name, vertices, triangles, sphere):
     return surface
 
 
-def store(mesh, sphere, fingerprint, stats, surface, refinement, token):
-    """Stores one member's result; surface = (vertices, triangles, sphere) of its parameterized surface,
-    refinement = (input triangle of each surface face, Steiner vertices (s, 3), Steiner weights (s, 3))."""
-    import bpy
-    old = mesh.get(SURFACE)
-    _write_sphere(mesh, sphere)
+def _store_common(mesh, fingerprint, stats, token):
     mesh[FINGERPRINT] = fingerprint
     mesh[STATS] = {k: v for k, v in stats.items() if isinstance(v, (bool, int, float, str))}
     mesh[SET] = token
-    mesh[SURFACE] = _surface_mesh(mesh.name, *surface)
-    _write_refinement(mesh[SURFACE], len(sphere), *refinement)
+
+
+def _drop_surface(mesh):
+    import bpy
+    old = mesh.get(SURFACE)
+    if SURFACE in mesh:
+        del mesh[SURFACE]
     if old is not None and old.users <= 1:  # only the fake user is left
         bpy.data.meshes.remove(old)
+
+
+def store(mesh, sphere, fingerprint, stats, surface, refinement, token):
+    """Stores one member's result; surface = (vertices, triangles, sphere) of its parameterized surface,
+    refinement = (input triangle of each surface face, Steiner vertices (s, 3), Steiner weights (s, 3))."""
+    _drop_surface(mesh)
+    _remove(mesh, PAIR_TRIANGLE, PAIR_WEIGHTS)
+    _write_sphere(mesh, sphere)
+    _store_common(mesh, fingerprint, stats, token)
+    mesh[SURFACE] = _surface_mesh(mesh.name, *surface)
+    _write_refinement(mesh[SURFACE], len(sphere), *refinement)
+
+
+def store_pair(mesh, triangle, weights, fingerprint, stats, token):
+    """Stores one object's map onto its partner (genus >= 1): per vertex, the partner's loop triangle and
+    barycentric weights."""
+    _drop_surface(mesh)
+    _remove(mesh, ATTRIBUTE, PAIR_TRIANGLE, PAIR_WEIGHTS)
+    _write(mesh, PAIR_TRIANGLE, 'INT', 'POINT', "value", np.asarray(triangle, dtype=np.int32))
+    _write(mesh, PAIR_WEIGHTS, 'FLOAT_VECTOR', 'POINT', "vector", np.asarray(weights, dtype=np.float32))
+    _store_common(mesh, fingerprint, stats, token)
+
+
+def pair_map(mesh):
+    """(triangle (n,), weights (n, 3)) of a mesh mapped directly onto its partner, or None."""
+    triangle = _read(mesh.attributes, PAIR_TRIANGLE, "value", np.int32, 1)
+    weights = _read(mesh.attributes, PAIR_WEIGHTS, "vector", np.float32, 3)
+    if triangle is None or weights is None:
+        return None
+    weights = weights.astype(np.float64)
+    return triangle, weights / weights.sum(axis=1, keepdims=True)
 
 
 def store_set(scene, token, names, locations):
@@ -149,6 +191,7 @@ def feature_locations(scene):
 
 def state(mesh, current_fingerprint):
     """NONE (never computed), CURRENT, or STALE (the mesh changed since)."""
-    if mesh.attributes.get(ATTRIBUTE) is None or FINGERPRINT not in mesh:
+    if (mesh.attributes.get(ATTRIBUTE) is None and mesh.attributes.get(PAIR_TRIANGLE) is None) \
+            or FINGERPRINT not in mesh:
         return NONE
     return CURRENT if mesh[FINGERPRINT] == current_fingerprint else STALE

@@ -1,4 +1,4 @@
-"""Runs the add-on suite (test_addon.py, then test_maps.py) in whatever Blender imports this file.
+"""Runs the add-on suite (test_addon.py, test_maps.py, then test_pair_maps.py) in whatever Blender imports this file.
 
     blender -b --factory-startup --python-exit-code 1 -P tests/blender/run_tests.py
     .venv-bpy/bin/python tests/blender/run_tests.py          # bpy module from PyPI
@@ -22,12 +22,13 @@ import bpy  # noqa: E402
 
 import test_addon  # noqa: E402
 import test_maps  # noqa: E402
+import test_pair_maps  # noqa: E402
 
 
 def main():
     import consistent_maps
     selected = os.environ.get("CMAPS_BLENDER_TESTS", "")
-    tests = [(name, fn) for module in (test_addon, test_maps) for name, fn in vars(module).items()
+    tests = [(name, fn) for module in (test_addon, test_maps, test_pair_maps) for name, fn in vars(module).items()
              if name.startswith("test_") and callable(fn) and selected in name and fn.__module__ == module.__name__]
     where = "bpy module" if not bpy.app.binary_path or "site-packages" in bpy.app.binary_path else "Blender"
     print(f"== Consistent Maps add-on tests in {where} {bpy.app.version_string}, {len(tests)} tests")
