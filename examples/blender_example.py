@@ -5,10 +5,12 @@
 Loads two shipped meshes, places the features of a features file (name -> [vertex per mesh]) as
 CM: vertex groups, computes their consistent parameterization, morphs the first into the second
 (shape key, animated 0 -> 1 -> 0 over frames 1-24), gives the first a UV map (Smart UV Project)
-and a generated colour-grid texture and bakes that texture into the second's own UV layout. Writes
-OUTDIR/example.blend, OUTDIR/morph_contact_sheet.png (the 24 frames, left to right, top to bottom)
-and OUTDIR/texture_transfer.png (source and target side by side). Uses consistent_maps.api from
-addon/ (the native module is built there by scripts/setup.sh); nothing is installed.
+and a generated colour-grid texture and bakes that texture and the first's normals (a tangent-space
+normal map) into the second's own UV layout. Writes OUTDIR/example.blend, OUTDIR/morph_contact_sheet.png
+(the 24 frames, left to right, top to bottom), OUTDIR/texture_transfer.png (source and target side by
+side) and OUTDIR/normal_transfer.png (Cycles, grey: the source, the target with its own normals, the
+target with the source's baked normals). Uses consistent_maps.api from addon/ (the native module is
+built there by scripts/setup.sh); nothing is installed.
 """
 import json
 import math
@@ -82,6 +84,29 @@ def textured_material(name, image, uv_map="UVMap"):
     links.new(texture.outputs["Color"], nodes["Principled BSDF"].inputs["Base Color"])
     nodes.active = texture  # what Workbench's Texture colour shows
     return material
+
+
+def grey_material(name):
+    material = bpy.data.materials.new(name)
+    material.use_nodes = True
+    principled = material.node_tree.nodes["Principled BSDF"]
+    principled.inputs["Base Color"].default_value = (0.7, 0.7, 0.7, 1)
+    principled.inputs["Roughness"].default_value = 0.6
+    return material
+
+
+def add_normal_map(material, image, uv_map="UVMap"):
+    """Feeds the tangent-space normal map image (at uv_map) into the material's Principled BSDF."""
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    uv = nodes.new("ShaderNodeUVMap")
+    uv.uv_map = uv_map
+    texture = nodes.new("ShaderNodeTexImage")
+    texture.image = image
+    normal_map = nodes.new("ShaderNodeNormalMap")
+    normal_map.uv_map = uv_map
+    links.new(uv.outputs["UV"], texture.inputs["Vector"])
+    links.new(texture.outputs["Color"], normal_map.inputs["Color"])
+    links.new(normal_map.outputs["Normal"], nodes["Principled BSDF"].inputs["Normal"])
 
 
 def world_bounds(objects):
@@ -163,9 +188,17 @@ grid.generated_type = 'COLOR_GRID'
 source.data.materials.append(textured_material(f"{SOURCE} grid", grid))
 baked = api.bake_texture(source, target, BAKE_SIZE)
 baked.pack()
-target.data.materials.append(textured_material(f"{TARGET} from {SOURCE}", baked))
+target_material = textured_material(f"{TARGET} from {SOURCE}", baked)
+target.data.materials.append(target_material)
 t = step(f"UV maps by Smart UV Project, {TEXTURE_SIZE}² colour grid on {SOURCE}, baked into {TARGET}'s UV "
          f"layout ({BAKE_SIZE}² image '{baked.name}', packed)", t)
+
+# -- 4b. the source's normals, baked into the target's UV layout as a tangent-space normal map ---------------
+normals = api.bake_normal_map(source, target, BAKE_SIZE, align='features')
+normals.pack()
+add_normal_map(target_material, normals)
+t = step(f"{SOURCE}'s normals baked into {TARGET}'s UV layout ({BAKE_SIZE}² normal map '{normals.name}', "
+         f"packed, in its material: {TARGET} wears {SOURCE}'s texture and surface detail)", t)
 
 # -- 5. the .blend -------------------------------------------------------------------------------------------
 scene.render.engine = 'BLENDER_WORKBENCH'
@@ -215,4 +248,28 @@ target.hide_render = False
 camera_on([source, target], 2 / 1)
 save_png(render(640, 320), OUT / "texture_transfer.png")
 t = step(f"rendered {SOURCE} (its texture) and {TARGET} (the baked transfer) to {OUT / 'texture_transfer.png'}", t)
+
+# Normals need a renderer that shades with them: Cycles, grey materials, a sun grazing the front. The target
+# moves one place right; a copy with the target's own normals takes its place.
+plain = bpy.data.objects.new(f"{TARGET} (own normals)", target.data.copy())
+scene.collection.objects.link(plain)
+plain.matrix_world = target.matrix_world.copy()
+target.location.x *= 2  # the source stands at the origin
+bpy.context.view_layer.update()  # matrix_world, which camera_on reads, follows the new location
+grey, grey_with_normals = grey_material("grey"), grey_material(f"grey, {SOURCE}'s normals")
+add_normal_map(grey_with_normals, normals)
+for obj, material in ((source, grey), (plain, grey), (target, grey_with_normals)):
+    obj.data.materials.clear()
+    obj.data.materials.append(material)
+sun = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", 'SUN'))
+sun.data.energy = 2
+scene.world.color = (0.15, 0.15, 0.15)  # dim ambient light: the sun's shading shows the normals
+sun.rotation_euler = (math.radians(60), 0, math.radians(-20))
+scene.collection.objects.link(sun)
+scene.render.engine = 'CYCLES'
+scene.cycles.samples, scene.cycles.use_denoising = 16, False
+camera_on([source, plain, target], 3 / 1)
+save_png(render(960, 320), OUT / "normal_transfer.png")
+t = step(f"rendered {SOURCE}, {TARGET} with its own normals and {TARGET} with {SOURCE}'s baked normals (Cycles) "
+         f"to {OUT / 'normal_transfer.png'}", t)
 step("done", START)

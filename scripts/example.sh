@@ -41,7 +41,7 @@ if ! blender -b --factory-startup --python-exit-code 1 -P examples/blender_examp
   exit 1
 fi
 grep '^\[blender example\]' out/blender_example.log
-for file in example.blend morph_contact_sheet.png texture_transfer.png; do
+for file in example.blend morph_contact_sheet.png texture_transfer.png normal_transfer.png; do
   test -s "out/blender_example/$file" || { echo "missing out/blender_example/$file" >&2; exit 1; }
 done
 
@@ -49,4 +49,5 @@ echo
 echo "Written to out/: *_sphere.obj (input triangles on the unit sphere), spot_constrained_* (features"
 echo "pinned to the sphere, refined mesh with its Steiner vertices), spot_set/ (consistent maps, remeshes"
 echo "with one connectivity, geometry images, feature locations), blender_example/ (example.blend with the"
-echo "animated morph and the baked texture, morph_contact_sheet.png, texture_transfer.png)."
+echo "animated morph, the baked texture and normal map, morph_contact_sheet.png, texture_transfer.png,"
+echo "normal_transfer.png)."

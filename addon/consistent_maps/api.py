@@ -335,17 +335,18 @@ def blend(objects):
     return blends.create(objects)
 
 
-def bake_texture(source, target, image_size=1024, margin=16):
+def bake_texture(source, target, image_size=1024, margin=16, progress=None):
     """Texture transfer: a new image (image_size²) holding source's image texture (the first in its
     materials, at the UV map its node uses) in target's active UV layout, through the common map; Cycles
     bakes it, padding `margin` pixels beyond the seams. Target and source are not modified. Raises
     MapError (nothing created) when they have no common map, source has no image texture or target no
-    UV map. Returns the image (not saved: pack or save it)."""
+    UV map. Returns the image (not saved: pack or save it). progress(fraction), if given, is called as the
+    steps finish (Blender is busy meanwhile: the operator shows it as the progress indicator)."""
     from . import bake  # Blender-only
-    return bake.bake(source, target, image_size, margin)
+    return bake.bake(source, target, image_size, margin, progress)
 
 
-def bake_normal_map(source, target, image_size=1024, margin=16, align='features'):
+def bake_normal_map(source, target, image_size=1024, margin=16, align='features', progress=None):
     """Normal-map transfer: a new image (image_size², Non-Color) holding source's shading normals (smooth,
     flat or custom) as a tangent-space normal map in target's active UV layout, through the common map, so
     that target rendered with it (Image Texture at that UV map, Non-Color, into a Normal Map node in
@@ -353,7 +354,8 @@ def bake_normal_map(source, target, image_size=1024, margin=16, align='features'
     it. align: 'features' turns source's normals by the least-squares rotation taking its features onto
     target's (needs 3 shared features), 'none' takes them as they are (object space). Target and source
     are not modified. Raises MapError (nothing created) when they have no common map, target has no UV
-    map or align cannot be done. Returns the image (not saved: pack or save it)."""
+    map or align cannot be done. Returns the image (not saved: pack or save it). progress(fraction), if
+    given, is called as the steps finish."""
     from . import bake  # Blender-only
-    return bake.bake_normals(source, target, image_size, margin, align)
+    return bake.bake_normals(source, target, image_size, margin, align, progress)
 

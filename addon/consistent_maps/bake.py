@@ -68,6 +68,18 @@ def _problems(source, target, size):
     return found + _target_problems(target, size)
 
 
+class _Steps:
+    """Reports each of `count` equal steps as it finishes to progress(fraction) (None: nobody listens)."""
+
+    def __init__(self, progress, count):
+        self.progress, self.count, self.finished = progress, count, 0
+
+    def done(self):
+        self.finished += 1
+        if self.progress is not None:
+            self.progress(self.finished / self.count)
+
+
 def _material(build):
     """A new node material whose tree build(nodes, links) fills (after clearing)."""
     material = bpy.data.materials.new("CM bake")
@@ -145,17 +157,20 @@ def _pixels(image):
     return values.reshape(-1, 4)
 
 
-def bake(source, target, size=1024, margin=16):
+def bake(source, target, size=1024, margin=16, progress=None):
     """A new image (size x size) of source's image texture in target's active UV layout; raises
-    maps.MapError (nothing created or modified) when it cannot be baked."""
+    maps.MapError (nothing created or modified) when it cannot be baked. progress(fraction) is called as
+    the steps finish."""
     found = _problems(source, target, size)
     if found:
         raise maps.MapError("\n".join(found))
+    steps = _Steps(progress, 2)
     image, uv_map = source_image(source)
     layer_data = source.data.uv_layers[uv_map].data
     source_uv = np.empty(len(layer_data) * 2, dtype=np.float32)
     layer_data.foreach_get("uv", source_uv)
     uv = maps.uvs_at_corners(source, target, maps.corner_landing(source, target), source_uv.reshape(-1, 2))
+    steps.done()
     result = bpy.data.images.new(f"{target.name} from {source.name}", size, size, alpha=False)
 
     def emit_source_image(nodes, links):
@@ -173,6 +188,7 @@ def bake(source, target, size=1024, margin=16):
     except maps.MapError:
         bpy.data.images.remove(result)
         raise
+    steps.done()
     return result
 
 
@@ -343,22 +359,29 @@ def _tangent_space(normals, tangents, signs, frame_normals):
     return result / np.maximum(np.linalg.norm(result, axis=1, keepdims=True), 1e-12)
 
 
-def bake_normals(source, target, size=1024, margin=16, align='features'):
+def bake_normals(source, target, size=1024, margin=16, align='features', progress=None):
     """A new image (size x size, Non-Color) holding source's normals as a tangent-space normal map in
     target's active UV layout, through the common map; raises maps.MapError (nothing created or modified)
-    when it cannot be baked."""
+    when it cannot be baked. progress(fraction) is called as the steps (four Cycles bakes, then the
+    source's normals) finish."""
     found = _normal_problems(source, target, size, align)
     if found:
         raise maps.MapError("\n".join(found))
     rotation = _normal_rotation(source, target, align)
     uv_map = target.data.uv_layers.active.name
+    names = (SPHERE_ATTRIBUTE, FRAME_TANGENT, FRAME_NORMAL, FRAME_SIGN)
+    steps = _Steps(progress, len(names) + 1)
+    baked = {}
     with _baking_copy(target) as (_, mesh):
         _frame_attributes(mesh, uv_map)
-        directions = _bake_attribute(mesh, SPHERE_ATTRIBUTE, size, margin)
-        length = np.linalg.norm(directions, axis=1)
-        covered = np.abs(length - 1) < 0.3  # interpolated unit vectors; cleared pixels decode to length 1.73
-        tangents, normals = (_bake_attribute(mesh, name, size, margin)[covered] for name in (FRAME_TANGENT, FRAME_NORMAL))
-        signs = np.where(_bake_attribute(mesh, FRAME_SIGN, size, margin)[covered, 0] < 0, -1.0, 1.0)
+        for name in names:
+            baked[name] = _bake_attribute(mesh, name, size, margin)
+            steps.done()
+    directions = baked[SPHERE_ATTRIBUTE]
+    length = np.linalg.norm(directions, axis=1)
+    covered = np.abs(length - 1) < 0.3  # interpolated unit vectors; cleared pixels decode to length 1.73
+    tangents, normals = baked[FRAME_TANGENT][covered], baked[FRAME_NORMAL][covered]
+    signs = np.where(baked[FRAME_SIGN][covered, 0] < 0, -1.0, 1.0)
     wanted = _source_normals_at(source, directions[covered] / length[covered, None], rotation)
     pixels = np.tile(np.array([0.5, 0.5, 1.0, 1.0], dtype=np.float32), (size * size, 1))
     pixels[covered, :3] = _tangent_space(wanted, tangents, signs, normals) * 0.5 + 0.5
@@ -366,4 +389,5 @@ def bake_normals(source, target, size=1024, margin=16, align='features'):
     result.colorspace_settings.name = 'Non-Color'
     result.pixels.foreach_set(pixels.ravel())
     result.update()
+    steps.done()
     return result

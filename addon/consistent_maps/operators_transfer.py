@@ -1,5 +1,7 @@
 """Copy layers of the chosen source onto the active object through their common map, or bake its texture or
 normals."""
+import contextlib
+
 import bpy
 from bpy.props import EnumProperty, StringProperty
 
@@ -47,6 +49,17 @@ class CM_OT_transfer(bpy.types.Operator):
         return {'FINISHED'}
 
 
+@contextlib.contextmanager
+def _progress_indicator(window_manager):
+    """Blender's progress indicator (the cursor shows the percentage), fed by the yielded progress(fraction):
+    a bake runs Cycles on the main thread, so the interface cannot redraw a status line meanwhile."""
+    window_manager.progress_begin(0, 100)
+    try:
+        yield lambda fraction: window_manager.progress_update(100 * fraction)
+    finally:
+        window_manager.progress_end()
+
+
 class BakeOperator:
     """The bake operators' shared steps: the panel's source, the active object as target, one report."""
     bl_options = {'REGISTER', 'UNDO'}
@@ -58,7 +71,8 @@ class BakeOperator:
             self.report({'ERROR'}, "Choose the source, and make the object to bake for the active object")
             return {'CANCELLED'}
         try:
-            image = self.bake(settings, source, target)
+            with _progress_indicator(context.window_manager) as progress:
+                image = self.bake(settings, source, target, progress)
         except api.MapError as e:
             self.report({'ERROR'}, str(e))
             return {'CANCELLED'}
@@ -72,8 +86,8 @@ class CM_OT_bake_texture(BakeOperator, bpy.types.Operator):
     bl_idname = "consistent_maps.bake_texture"
     bl_label = "Bake Texture"
 
-    def bake(self, settings, source, target):
-        return api.bake_texture(source, target, settings.bake_size)
+    def bake(self, settings, source, target, progress):
+        return api.bake_texture(source, target, settings.bake_size, progress=progress)
 
     def baked(self, image, target):
         return f"Image '{image.name}' ({image.size[0]} px): save or pack it to keep it"
@@ -85,8 +99,9 @@ class CM_OT_bake_normal_map(BakeOperator, bpy.types.Operator):
     bl_idname = "consistent_maps.bake_normal_map"
     bl_label = "Bake Normal Map"
 
-    def bake(self, settings, source, target):
-        return api.bake_normal_map(source, target, settings.bake_size, align=settings.normal_align)
+    def bake(self, settings, source, target, progress):
+        return api.bake_normal_map(source, target, settings.bake_size, align=settings.normal_align,
+                                   progress=progress)
 
     def baked(self, image, target):
         return (f"Normal map '{image.name}' ({image.size[0]} px, tangent space of UV map "

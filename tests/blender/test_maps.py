@@ -425,7 +425,9 @@ def test_bake_texture_between_identical_members_reproduces_the_texture():
     before = snapshot(target), snapshot(source), bpy.context.scene.render.engine
     assert bpy.ops.consistent_maps.bake_texture() == {'FINISHED'}
     assert bpy.data.images["Cactus other from Cactus 0"].size[:] == (64, 64)
-    baked = api.bake_texture(source, target, 64, margin=0)  # only pixels inside the layout: comparable
+    reported = []
+    baked = api.bake_texture(source, target, 64, margin=0, progress=reported.append)  # margin 0: comparable pixels
+    assert reported == [0.5, 1.0], "the mapped UVs, then the Cycles bake"
     pixels = np.empty(64 * 64 * 4, dtype=np.float32)
     baked.pixels.foreach_get(pixels)
     pixels = pixels.reshape(64, 64, 4)
@@ -550,7 +552,9 @@ def test_bake_normal_map_onto_an_identical_copy_is_flat():
     api.compute([source, target], effort=0)
     _unit_uv(target.data)
     before = snapshot(target), snapshot(source), bpy.context.scene.render.engine, len(bpy.data.materials)
-    image = api.bake_normal_map(source, target, 128)
+    reported = []
+    image = api.bake_normal_map(source, target, 128, progress=reported.append)
+    assert reported == [0.2, 0.4, 0.6, 0.8, 1.0], "four Cycles bakes, then the source's normals"
     assert image.colorspace_settings.name == 'Non-Color' and image.size[:] == (128, 128)
     deviation = _tilt(_decoded(image))
     shown, own, _ = _shown_at_centroids(image, target.data)
