@@ -198,6 +198,19 @@ def test_faces_with_holes(native):
         native.consistent_spherical_parameterization(meshes, np.delete(table, [0, 1], axis=1), grid=GRID)
 
 
+def test_faces_ringed_only(native):
+    """Features only on the holes' boundaries (4 each, from index len/4 of each loop as found by
+    bench/transfer_benchmark.py): a free vertex beside a feature used to block a boundary vertex's split."""
+    meshes = [native.read_mesh(str(FACES[i])) for i in (1, 2)]  # neutral, smile
+    table = np.tile([3, 7078, 1742, 5449, 23, 1979, 4553, 6393], (2, 1))
+    loops = boundary_loops(meshes[0][1])
+    assert sorted(len([v for v in table[0] if v in loop]) for loop in loops) == [4, 4]
+    result = native.consistent_spherical_parameterization(meshes, table, grid=GRID)
+    for sphere, stats, _ in result["members"]:
+        assert stats["flipped"] == 0 and stats["degenerate"] == 0
+        assert np.abs(sphere[table[0]] - result["feature_locations"]).max() <= 1e-12
+
+
 def test_rejects_bad_input(native, meshes, features):
     two = meshes[:2]
     good = features[:2].copy()

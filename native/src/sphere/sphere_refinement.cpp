@@ -1,5 +1,6 @@
 #include "sphere/sphere_refinement.h"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -59,7 +60,12 @@ void place_split_vertex(const MeshRefinement& mesh, const VertexSplit& s, std::v
 
 // A chain vertex goes on its arc between its current chain neighbours (one
 // of them the kept vertex), at the middle of the longest valid stretch.
-void place_on_arc(const MeshRefinement& mesh, const ArcChains& arcs, const VertexSplit& s, std::vector<Vec3>& sphere) {
+// Beside a feature where the arcs turn, a free neighbour may have moved
+// across this arc's great circle (legal while the arc was one chord): then
+// no point of the arc is valid, so the vertex goes to the middle and such
+// neighbours move back into their kernels.
+void place_on_arc(const MeshRefinement& mesh, const ArcChains& arcs, const std::vector<char>& fixed,
+                  const VertexSplit& s, std::vector<Vec3>& sphere) {
   const int v = s.removed;
   const auto [lo, hi] = arcs.neighbours(mesh, v);
   Vec3 origin, axis;
@@ -89,6 +95,17 @@ void place_on_arc(const MeshRefinement& mesh, const ArcChains& arcs, const Verte
   const bool kept_low = s.kept == lo;
   for (double f = 1.0 / kSamples; f > 1e-15; f *= 0.5)
     if (valid_at(kept_low ? f : 1 - f)) return;
+  valid_at(0.5);
+  const std::vector<int> ring = mesh.ring(v);
+  for (int w : ring) {
+    if ((!fixed.empty() && fixed[w]) || arcs.constrained(w) || star_valid(mesh, sphere, w)) continue;
+    std::vector<Vec3> around;
+    for (int u : mesh.ring(w)) around.push_back(sphere[u]);
+    if (const auto p = kernel_point(around, sphere[w])) sphere[w] = *p;
+  }
+  if (star_valid(mesh, sphere, v) &&
+      std::all_of(ring.begin(), ring.end(), [&](int w) { return star_valid(mesh, sphere, w); }))
+    return;
   throw Error("internal error: empty kernel on a constrained path at vertex split " + std::to_string(v));
 }
 
@@ -167,7 +184,7 @@ void refine_on_sphere(const ProgressiveMesh& pm, const std::vector<const std::ve
     update_weights(s.face_right);
 
     if (arcs && arcs->constrained(s.removed))
-      place_on_arc(refinement, *arcs, s, sphere);
+      place_on_arc(refinement, *arcs, fixed, s, sphere);
     else
       place_split_vertex(refinement, s, sphere);
     optimizer.optimize_vertex(s.removed, schedule.split_iterations);
