@@ -8,7 +8,11 @@
 //   4. one mesh, the grid, carrying all n remeshed shapes;
 //   5. its unconstrained map, stretch and quadric summed over the shapes,
 //      gives feature locations that respect every shape;
-//   6. constrained map of every member to those locations.
+//   6. constrained map of every member to those locations, its paths laid
+//      out along its previous map carried through the map of step 5 (or
+//      along its own unconstrained map when that is more efficient).
+// Steps 3-6 run twice, the second time remeshing along the maps of the
+// first; the maps before the last round are quick ones (effort 0).
 #pragma once
 #include <vector>
 

@@ -134,7 +134,7 @@ ConstrainedResult parameterize_to_locations(const ConsistentMember& member, cons
 
 ConstrainedResult parameterize_to_locations(const ConsistentMember& member, const std::vector<Vec3>& locations,
                                             const SphereOptions& options, const ProgressCallback& progress,
-                                            const ReferenceMap& reference) {
+                                            const ReferenceMap& reference, const std::vector<Vec3>* guide) {
   if (locations.size() != member.features.size())
     throw InvalidInput("got " + std::to_string(locations.size()) + " locations for " +
                        std::to_string(member.features.size()) + " features");
@@ -142,7 +142,8 @@ ConstrainedResult parameterize_to_locations(const ConsistentMember& member, cons
   std::vector<Vec3> targets;
   for (int k : p.names) targets.push_back(locations[k]);
   // Every member of a set faces outwards, so that their maps turn alike.
-  return constrained_spherical_parameterization(outward(member.mesh), p.vertices, targets, options, progress, reference);
+  return constrained_spherical_parameterization(outward(member.mesh), p.vertices, targets, options, progress, reference,
+                                               guide);
 }
 
 ConsistentResult consistent_spherical_parameterization(const std::vector<ConsistentMember>& members,
@@ -153,37 +154,91 @@ ConsistentResult consistent_spherical_parameterization(const std::vector<Consist
   const int n = static_cast<int>(members.size());
   ConsistentResult result;
   result.first = choose_first(members, options.first);
-  const double share = 1.0 / (2 * n + 2);  // progress per map computed
+  constexpr int kRounds = 2;  // of steps 3-6
+  // Progress: one share per map computed (the seed, n maps of step 2, per
+  // round the common map and one map per member, and the last round's
+  // second map per member).
+  const double share = 1.0 / (1 + n + kRounds * (1 + n) + n);
+  int maps_done = 0;
+  auto next_share = [&]() {
+    ++maps_done;
+    return slice(progress, (maps_done - 1) * share, maps_done * share);
+  };
 
   // 1. Initial locations from the first member alone.
   const ConsistentMember& first = members[result.first];
-  const SphereResult seed = spherical_parameterization(close_holes(outward(first.mesh)).mesh, options.sphere,
-                                                      slice(progress, 0, share));
+  const SphereResult seed =
+      spherical_parameterization(close_holes(outward(first.mesh)).mesh, options.sphere, next_share());
   for (int v : first.features) result.initial_locations.push_back(seed.sphere[v]);
 
-  // 2-3. Every member mapped to them, then sampled on one grid with the
-  // features snapped to samples.
-  const OctahedralGrid grid = octahedral_grid(options.grid);
-  std::vector<Vec3> samples = grid.sphere;
-  const std::vector<int> feature_samples = snap_features(samples, result.initial_locations);
-  std::vector<std::vector<Vec3>> shapes;
-  for (int i = 0; i < n; ++i) {
-    const ConstrainedResult map = parameterize_to_locations(members[i], result.initial_locations, options.sphere,
-                                                            slice(progress, (1 + i) * share, (2 + i) * share));
-    // Holes are sampled on their temporary fans, so every grid sample has a position.
-    const ParameterizedSurface p = parameterized_surface(members[i].mesh, map, true);
-    shapes.push_back(resample(p.surface, p.sphere, samples, options.sphere.threads));
-  }
-
-  // 4-5. The grid carrying every shape: its map places the features.
-  const SphereResult common = spherical_parameterization(grid.triangles, shapes, options.sphere,
-                                                         slice(progress, (1 + n) * share, (2 + n) * share));
-  for (int s : feature_samples) result.feature_locations.push_back(common.sphere[s]);
-
-  // 6. Final maps to those locations.
+  // Each member's own quick unconstrained map: what a constrained map lays
+  // its paths out in by default (constrained_parameterization.cpp); computed
+  // once here for all its constrained maps.
+  SphereOptions quick = options.sphere;
+  quick.effort = 0;
+  std::vector<std::vector<Vec3>> own_guides;
   for (int i = 0; i < n; ++i)
-    result.members.push_back(parameterize_to_locations(members[i], result.feature_locations, options.sphere,
-                                                       slice(progress, (2 + n + i) * share, (3 + n + i) * share)));
+    own_guides.push_back(spherical_parameterization(close_holes(outward(members[i].mesh)).mesh, quick).sphere);
+
+  // 2. Every member mapped to them (quickly: the maps before the last round
+  // only carry the correspondence to the next).
+  std::vector<ConstrainedResult> maps;
+  for (int i = 0; i < n; ++i)
+    maps.push_back(parameterize_to_locations(members[i], result.initial_locations, quick, next_share(),
+                                             ReferenceMap{}, &own_guides[i]));
+
+  // Steps 3-6, twice: the second round remeshes along the maps of the first,
+  // which already fit common locations and wind alike (below).
+  const OctahedralGrid grid = octahedral_grid(options.grid);
+  std::vector<Vec3> locations = result.initial_locations;
+  for (int round = 0; round < kRounds; ++round) {
+    // 3. Every member sampled on one grid, the features snapped to samples.
+    std::vector<Vec3> samples = grid.sphere;
+    const std::vector<int> feature_samples = snap_features(samples, locations);
+    std::vector<std::vector<Vec3>> shapes;
+    for (int i = 0; i < n; ++i) {
+      // Holes are sampled on their temporary fans, so every grid sample has a position.
+      const ParameterizedSurface p = parameterized_surface(members[i].mesh, maps[i], true);
+      shapes.push_back(resample(p.surface, p.sphere, samples, options.sphere.threads));
+    }
+
+    // 4-5. The grid carrying every shape: its map places the features.
+    const SphereResult common = spherical_parameterization(grid.triangles, shapes, options.sphere, next_share());
+    locations.clear();
+    for (int s : feature_samples) locations.push_back(common.sphere[s]);
+
+    // 6. Maps to those locations. A constrained map keeps the way its guide
+    // winds around the features. Each member's guide is its current map
+    // carried through the common map (each current sphere point to where the
+    // grid's map puts it), which winds like the common map that suits every
+    // member; a member's own unconstrained map, the default guide, often
+    // winds otherwise when its feature layout is far from the common one
+    // (cactus, cat-lion). A carried guide inherits the current map's flaws,
+    // so the own guide is tried too, the more efficient map kept: in the
+    // last round always, before only when the carried one is less efficient
+    // than the member's current map.
+    const SphereLocator grid_locator(samples, grid.triangles);
+    for (int i = 0; i < n; ++i) {
+      std::vector<Vec3> directions = maps[i].sphere;
+      directions.insert(directions.end(), maps[i].hole_centres_sphere.begin(), maps[i].hole_centres_sphere.end());
+      std::vector<Vec3> carried = grid_locator.interpolate(
+          common.sphere, grid_locator.locate_all(directions, options.sphere.threads), options.sphere.threads);
+      for (Vec3& g : carried) g.normalize();
+      const bool last = round + 1 == kRounds;
+      const SphereOptions& round_options = last ? options.sphere : quick;
+      ConstrainedResult map = parameterize_to_locations(members[i], locations, round_options, next_share(),
+                                                        ReferenceMap{}, &carried);
+      if (last || map.report.efficiency < maps[i].report.efficiency) {
+        ConstrainedResult along_own = parameterize_to_locations(members[i], locations, round_options,
+                                                                last ? next_share() : ProgressCallback{},
+                                                                ReferenceMap{}, &own_guides[i]);
+        if (along_own.report.efficiency > map.report.efficiency) map = std::move(along_own);
+      }
+      maps[i] = std::move(map);
+    }
+  }
+  result.feature_locations = std::move(locations);
+  result.members = std::move(maps);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -103,7 +103,8 @@ ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mes
                                                          const std::vector<Vec3>& given_targets,
                                                          const SphereOptions& options,
                                                          const ProgressCallback& progress,
-                                                         const ReferenceMap& reference) {
+                                                         const ReferenceMap& reference,
+                                                         const std::vector<Vec3>* given_guide) {
   // Holes (thesis 3.5) are closed by a temporary centre vertex each; each
   // hole must be ringed by at least 3 features.
   ClosedMesh closed = close_holes(mesh);
@@ -129,8 +130,13 @@ ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mes
   if (!given_targets.empty()) guide_options.effort = 0;
   ProgressCallback unconstrained;
   if (progress) unconstrained = [&](double f, const std::string& stage) { return progress(0.3 * f, stage); };
-  const SphereResult guide =
-      spherical_parameterization({closed.mesh.vertices, triangles}, guide_options, unconstrained);
+  if (given_guide && (given_targets.empty() || given_guide->size() != static_cast<size_t>(nc)))
+    throw Error("internal error: a guide needs targets and one direction per vertex of the closed mesh");
+  SphereResult guide;
+  if (given_guide)
+    guide.sphere = *given_guide;
+  else
+    guide = spherical_parameterization({closed.mesh.vertices, triangles}, guide_options, unconstrained);
   const double begin = 0.3;
   if (given_targets.empty()) {
     for (int v : features) result.targets.push_back(guide.sphere[v]);
