@@ -31,6 +31,11 @@ struct ConsistentOptions {
   SphereOptions sphere;
   int first = -1;  // member seeding step 1; -1 = the first member that has every feature
   int grid = 64;   // octahedral grid resolution of the intermediate remeshes (steps 3-5)
+  // Steps 3-6 twice, the paths of step 6 laid out along carried maps (see
+  // above); false: steps 3-6 once, each member's paths along its own
+  // unconstrained map (what a pair's inter-surface map starts from: its
+  // distortion optimization was measured from those maps).
+  bool carry_guides = true;
 };
 
 struct ConsistentResult {

@@ -154,11 +154,12 @@ ConsistentResult consistent_spherical_parameterization(const std::vector<Consist
   const int n = static_cast<int>(members.size());
   ConsistentResult result;
   result.first = choose_first(members, options.first);
-  constexpr int kRounds = 2;  // of steps 3-6
+  const bool carry = options.carry_guides;
+  const int rounds = carry ? 2 : 1;  // of steps 3-6
   // Progress: one share per map computed (the seed, n maps of step 2, per
   // round the common map and one map per member, and the last round's
   // second map per member).
-  const double share = 1.0 / (1 + n + kRounds * (1 + n) + n);
+  const double share = 1.0 / (1 + n + rounds * (1 + n) + (carry ? n : 0));
   int maps_done = 0;
   auto next_share = [&]() {
     ++maps_done;
@@ -176,22 +177,23 @@ ConsistentResult consistent_spherical_parameterization(const std::vector<Consist
   // once here for all its constrained maps.
   SphereOptions quick = options.sphere;
   quick.effort = 0;
-  std::vector<std::vector<Vec3>> own_guides;
-  for (int i = 0; i < n; ++i)
-    own_guides.push_back(spherical_parameterization(close_holes(outward(members[i].mesh)).mesh, quick).sphere);
+  std::vector<std::vector<Vec3>> own_guides(n);
+  for (int i = 0; i < n && carry; ++i)
+    own_guides[i] = spherical_parameterization(close_holes(outward(members[i].mesh)).mesh, quick).sphere;
+  const auto own_guide = [&](int i) { return carry ? &own_guides[i] : nullptr; };  // null: computed inside
 
   // 2. Every member mapped to them (quickly: the maps before the last round
   // only carry the correspondence to the next).
   std::vector<ConstrainedResult> maps;
   for (int i = 0; i < n; ++i)
-    maps.push_back(parameterize_to_locations(members[i], result.initial_locations, quick, next_share(),
-                                             ReferenceMap{}, &own_guides[i]));
+    maps.push_back(parameterize_to_locations(members[i], result.initial_locations, carry ? quick : options.sphere,
+                                             next_share(), ReferenceMap{}, own_guide(i)));
 
   // Steps 3-6, twice: the second round remeshes along the maps of the first,
   // which already fit common locations and wind alike (below).
   const OctahedralGrid grid = octahedral_grid(options.grid);
   std::vector<Vec3> locations = result.initial_locations;
-  for (int round = 0; round < kRounds; ++round) {
+  for (int round = 0; round < rounds; ++round) {
     // 3. Every member sampled on one grid, the features snapped to samples.
     std::vector<Vec3> samples = grid.sphere;
     const std::vector<int> feature_samples = snap_features(samples, locations);
@@ -217,6 +219,11 @@ ConsistentResult consistent_spherical_parameterization(const std::vector<Consist
     // so the own guide is tried too, the more efficient map kept: in the
     // last round always, before only when the carried one is less efficient
     // than the member's current map.
+    if (!carry) {
+      for (int i = 0; i < n; ++i)
+        maps[i] = parameterize_to_locations(members[i], locations, options.sphere, next_share());
+      break;
+    }
     const SphereLocator grid_locator(samples, grid.triangles);
     for (int i = 0; i < n; ++i) {
       std::vector<Vec3> directions = maps[i].sphere;
@@ -224,7 +231,7 @@ ConsistentResult consistent_spherical_parameterization(const std::vector<Consist
       std::vector<Vec3> carried = grid_locator.interpolate(
           common.sphere, grid_locator.locate_all(directions, options.sphere.threads), options.sphere.threads);
       for (Vec3& g : carried) g.normalize();
-      const bool last = round + 1 == kRounds;
+      const bool last = round + 1 == rounds;
       const SphereOptions& round_options = last ? options.sphere : quick;
       ConstrainedResult map = parameterize_to_locations(members[i], locations, round_options, next_share(),
                                                         ReferenceMap{}, &carried);

@@ -411,6 +411,7 @@ void map_through_sphere_pair(const TriangleMesh& a, const TriangleMesh& b, const
   ConsistentOptions consistent;
   consistent.sphere = options.sphere;
   consistent.grid = options.grid;
+  consistent.carry_guides = false;
   const ConsistentResult maps = consistent_spherical_parameterization(
       members, consistent, slice(progress, features.size() < 3 ? 0.2 : 0, 0.7));
   result.seconds_parameterize = seconds_since(stage);
