@@ -98,11 +98,12 @@ def _emission(nodes, links, color_socket):
 
 
 @contextlib.contextmanager
-def _baking_copy(target):
-    """A temporary object with a copy of target's mesh (same transform), selected and active alone, with
-    Cycles at 1 sample; everything (objects, selection, engine, materials made meanwhile) is restored after."""
+def _baking_copy(target, mesh=None):
+    """A temporary object with a copy of target's mesh (or the given temporary mesh; same transform),
+    selected and active alone, with Cycles at 1 sample; everything (objects, selection, engine, materials
+    made meanwhile, the mesh) is restored or removed after."""
     scene, layer = bpy.context.scene, bpy.context.view_layer
-    mesh = target.data.copy()
+    mesh = target.data.copy() if mesh is None else mesh
     copy = bpy.data.objects.new("CM bake", mesh)
     copy.matrix_world = target.matrix_world.copy()
     scene.collection.objects.link(copy)
@@ -339,6 +340,20 @@ def _tangent_frames(mesh, uv_map):
         mesh.free_tangents()
 
 
+def _refined_copy(target, uv_map):
+    """A temporary mesh of target's map: its refined triangles (Steiner vertices inside the input ones),
+    on which the map is linear, with their sphere points and uv_map's layout (each refined corner's
+    coordinates interpolated in its input triangle). The sphere point a pixel gets from it is the map's
+    own; the input triangles would interpolate straight across the paths' bends."""
+    p = maps.parameterization(target)
+    vertices, triangles, sphere = results.surface(target.data)
+    corners = meshdata.loop_triangles(target.data)[1][p.input_triangle]      # (M', 3) input corners (loops)
+    uv = np.einsum("rjk,rkd->rjd", mapping.refined_in_input(p), _uv(target.data, uv_map)[corners])
+    mesh = results.surface_mesh("CM bake refined", vertices, triangles, sphere)
+    mesh.uv_layers.new(name=uv_map).data.foreach_set("uv", uv.astype(np.float32).ravel())
+    return mesh
+
+
 def _frame_attributes(mesh, uv_map):
     """Stores the tangent frame on the copy as corner attributes (the sign as a vector's x), so Cycles
     interpolates them per pixel as it does for its Normal Map node."""
@@ -374,9 +389,12 @@ def bake_normals(source, target, size=1024, margin=16, align='features', progres
     baked = {}
     with _baking_copy(target) as (_, mesh):
         _frame_attributes(mesh, uv_map)
-        for name in names:
+        for name in names[1:]:
             baked[name] = _bake_attribute(mesh, name, size, margin)
             steps.done()
+    with _baking_copy(target, _refined_copy(target, uv_map)) as (_, mesh):
+        baked[SPHERE_ATTRIBUTE] = _bake_attribute(mesh, SPHERE_ATTRIBUTE, size, margin)
+        steps.done()
     directions = baked[SPHERE_ATTRIBUTE]
     length = np.linalg.norm(directions, axis=1)
     covered = np.abs(length - 1) < 0.3  # interpolated unit vectors; cleared pixels decode to length 1.73

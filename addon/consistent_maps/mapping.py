@@ -38,7 +38,7 @@ class Landing:
     barycentric: np.ndarray   # (q, 3)
 
 
-def _to_input(parameterization):
+def refined_in_input(parameterization):
     """(M', 3, 3): row j of matrix r gives refined triangle r's corner j in barycentric coordinates of the
     input triangle it lies in, so refined barycentric b becomes b @ matrix."""
     p = parameterization
@@ -52,7 +52,7 @@ def land(parameterization, directions, *, threads=2):
     """Where the sphere directions (q, 3) land on the member's input triangles."""
     p = parameterization
     refined, weights = native.sphere_locator(p.sphere, p.triangles).locate(directions, threads=threads)
-    matrices = _to_input(p)  # gathered one column at a time: far faster than whole (q, 3, 3) matrices
+    matrices = refined_in_input(p)  # gathered one column at a time: far faster than whole (q, 3, 3) matrices
     barycentric = np.column_stack([sum(weights[:, j] * matrices[:, j, k][refined] for j in range(3))
                                    for k in range(3)])
     barycentric = np.clip(barycentric, 0, None)

@@ -61,7 +61,7 @@ def _write_refinement(surface, input_count, input_triangle, steiner_vertices, st
     _write(surface, INPUT_WEIGHTS, 'FLOAT_VECTOR', 'POINT', "vector", weights)
 
 
-def _surface_mesh(name, vertices, triangles, sphere):
+def surface_mesh(name, vertices, triangles, sphere):
     import bpy
     surface = bpy.data.meshes.new(f"CM surface {name}")
     surface.vertices.add(len(vertices))
@@ -100,7 +100,7 @@ def store(mesh, sphere, fingerprint, stats, surface, refinement, token):
     _remove(mesh, PAIR_TRIANGLE, PAIR_WEIGHTS)
     _write_sphere(mesh, sphere)
     _store_common(mesh, fingerprint, stats, token)
-    mesh[SURFACE] = _surface_mesh(mesh.name, *surface)
+    mesh[SURFACE] = surface_mesh(mesh.name, *surface)
     _write_refinement(mesh[SURFACE], len(sphere), *refinement)
 
 
