@@ -190,28 +190,31 @@ std::vector<SurfacePoint> map_through_sphere(const std::vector<Vec3>& source_sph
                                              const ConstrainedResult& target_map,
                                              const std::vector<std::pair<int, int>>& exact, int threads) {
   // Holes are closed by their temporary fans so that every direction lands
-  // somewhere; one landing in a fan (the boundaries are chords of the arcs
-  // both meshes' holes share, so only slivers along them) moves onto the
-  // fan's boundary edge, on the real triangle across it.
+  // somewhere. Both meshes' boundaries lie on the same great-circle arcs (a
+  // chord projects onto its arc), so only directions on a boundary, up to
+  // rounding, land in a fan: they move onto its boundary edge, on the real
+  // triangle across it.
   const ParameterizedSurface surface = parameterized_surface(target, target_map, /*close_holes=*/true);
   const SphereLocator locator(surface.sphere, surface.surface.triangles);
   std::vector<SphereLocation> located = locator.locate_all(source_sphere, threads);
-  const int real = int(target_map.triangles.size()), first_centre = int(surface.sphere.size()) - target_map.holes;
-  std::map<std::pair<int, int>, int> beside;  // boundary edge (u, v) of a fan -> the real triangle with edge (v, u)
-  for (int f = 0; f < real; ++f)
-    for (int k = 0; k < 3; ++k) beside[{target_map.triangles[f][(k + 1) % 3], target_map.triangles[f][k]}] = f;
-  for (SphereLocation& at : located) {
-    if (at.triangle < real) continue;
-    const Triangle& fan = surface.surface.triangles[at.triangle];
-    const int k = fan[0] >= first_centre ? 0 : fan[1] >= first_centre ? 1 : 2;
-    const int u = fan[(k + 1) % 3], v = fan[(k + 2) % 3];
-    double wu = at.barycentric[(k + 1) % 3], wv = at.barycentric[(k + 2) % 3];
-    if (!(wu + wv > 0)) wu = wv = 1;
-    const auto edge = beside.find({u, v});
-    if (edge == beside.end()) throw Error("internal error: a hole's boundary edge has no triangle");
-    at.triangle = edge->second;
-    const Triangle& t = target_map.triangles[at.triangle];
-    for (int j = 0; j < 3; ++j) at.barycentric[j] = t[j] == u ? wu / (wu + wv) : t[j] == v ? wv / (wu + wv) : 0;
+  if (target_map.holes > 0) {
+    const int real = int(target_map.triangles.size()), first_centre = int(surface.sphere.size()) - target_map.holes;
+    std::map<std::pair<int, int>, int> beside;  // boundary edge (u, v) of a fan -> the real triangle with edge (v, u)
+    for (int f = 0; f < real; ++f)
+      for (int k = 0; k < 3; ++k) beside[{target_map.triangles[f][(k + 1) % 3], target_map.triangles[f][k]}] = f;
+    for (SphereLocation& at : located) {
+      if (at.triangle < real) continue;
+      const Triangle& fan = surface.surface.triangles[at.triangle];
+      const int k = fan[0] >= first_centre ? 0 : fan[1] >= first_centre ? 1 : 2;
+      const int u = fan[(k + 1) % 3], v = fan[(k + 2) % 3];
+      double wu = at.barycentric[(k + 1) % 3], wv = at.barycentric[(k + 2) % 3];
+      if (!(wu + wv > 0)) wu = wv = 1;
+      const auto edge = beside.find({u, v});
+      if (edge == beside.end()) throw Error("internal error: a hole's boundary edge has no triangle");
+      at.triangle = edge->second;
+      const Triangle& t = target_map.triangles[at.triangle];
+      for (int j = 0; j < 3; ++j) at.barycentric[j] = t[j] == u ? wu / (wu + wv) : t[j] == v ? wv / (wu + wv) : 0;
+    }
   }
   std::vector<SurfacePoint> points(located.size());
   parallel_for(int(located.size()), threads, [&](int i) { points[i] = to_input(target, target_map, located[i]); });
