@@ -120,10 +120,11 @@ options:
   --optimize R       rounds of distortion optimization of the inter-surface map
                      (0..100, default 2; 0 = the plain composition of the
                      two spherical maps, without A's map refitted to B's)
-  --restarts K       genus 0: compute the inter-surface map K times with seeds
-                     N, N+1, ... and keep the least distorted (1..100, default
-                     1); the optimization is local, so with few features
-                     restarts find better maps
+  --restarts K       genus 0: compute the inter-surface map K times and keep
+                     the least distorted (1..100, default 1): restart k uses
+                     seed N + k/2, odd ones a consistent parameterization with
+                     carried guides; the optimization is local, so with few
+                     features restarts find better maps
   --seed N           random seed; equal seeds give equal results (default 1)
   --effort E         0 = fast preview, 1 = default, 2 = best quality
   --threads N        worker threads (default 2)

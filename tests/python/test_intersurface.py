@@ -91,18 +91,21 @@ def test_zero_features_get_a_valid_map(native):
 
 
 def test_restarts_keep_the_least_distorted_map(native):
-    """Restart k is the map computed with seed + k; the one with the lowest summed energy is returned."""
+    """Restart 0 is the map computed with the seed, restart 2 with seed + 1 (odd restarts: carried guides,
+    not reachable alone); the one with the lowest summed energy is returned."""
     a, b = native.read_mesh(str(SPOT)), native.read_mesh(str(SPHERE))
     pairs = [[0, 0], [100, 50], [200, 300], [300, 350]]
-    singles = [native.intersurface_map(a, b, pairs, effort=0, seed=seed) for seed in (5, 6, 7)]
-    energies = [sum(r["symmetric_dirichlet"]) for r in singles]
     best = native.intersurface_map(a, b, pairs, effort=0, seed=5, restarts=3)
-    assert best["restart_dirichlet"].tolist() == energies
-    assert len(set(energies)) > 1  # the seeds do lead to different maps
-    winner = singles[int(np.argmin(energies))]
-    assert best["symmetric_dirichlet"] == winner["symmetric_dirichlet"]
-    assert (best["a_to_b_triangle"] == winner["a_to_b_triangle"]).all()
-    assert (best["b_on_a"] == winner["b_on_a"]).all()
+    singles = {k: native.intersurface_map(a, b, pairs, effort=0, seed=seed) for k, seed in ((0, 5), (2, 6))}
+    assert [best["restart_dirichlet"][k] for k in singles] == [sum(r["symmetric_dirichlet"]) for r in singles.values()]
+    energies = best["restart_dirichlet"].tolist()
+    assert len(energies) == 3
+    assert len(set(energies)) == 3  # the starts do lead to different maps
+    assert sum(best["symmetric_dirichlet"]) == min(energies)
+    if int(np.argmin(energies)) in singles:
+        winner = singles[int(np.argmin(energies))]
+        assert (best["a_to_b_triangle"] == winner["a_to_b_triangle"]).all()
+        assert (best["b_on_a"] == winner["b_on_a"]).all()
     with pytest.raises(ValueError, match="restarts must be at least 1, got 0"):
         native.intersurface_map(a, b, pairs, restarts=0)
 

@@ -398,7 +398,7 @@ std::optional<UsedVertices> drop_unused(const TriangleMesh& mesh) {
 // Genus 0: the composition of a consistent spherical parameterization of
 // the pair, refitted and optimized for symmetric distortion (see the options).
 void map_through_sphere_pair(const TriangleMesh& a, const TriangleMesh& b, const std::vector<FeaturePair>& features,
-                             IntersurfaceResult& result, const IntersurfaceOptions& options,
+                             bool carry_guides, IntersurfaceResult& result, const IntersurfaceOptions& options,
                              const ProgressCallback& progress) {
   // Too few pairs for a constrained map: add some from the aligned unconstrained maps.
   auto stage = Clock::now();
@@ -414,7 +414,7 @@ void map_through_sphere_pair(const TriangleMesh& a, const TriangleMesh& b, const
   ConsistentOptions consistent;
   consistent.sphere = options.sphere;
   consistent.grid = options.grid;
-  consistent.carry_guides = false;
+  consistent.carry_guides = carry_guides;
   const ConsistentResult maps = consistent_spherical_parameterization(
       members, consistent, slice(progress, features.size() < 3 ? 0.2 : 0, 0.7));
   result.seconds_parameterize = seconds_since(stage);
@@ -610,15 +610,19 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
     throw InvalidInput("grid must be even and at least 2, got " + std::to_string(options.grid));
   if (options.restarts < 1) throw InvalidInput("restarts must be at least 1, got " + std::to_string(options.restarts));
 
-  // Each restart parameterizes with the next seed; the optimization ends in
-  // a different local minimum each time, and the least distorted map wins.
+  // The optimization ends in a different local minimum from each start, and
+  // the least distorted map wins. Even restarts parameterize the pair in one
+  // pass of steps 3-6 with the next seed; odd ones with the same seed, with
+  // guides carried through the common map (ConsistentOptions), which starts
+  // some pairs in a better basin and others in a worse one.
   std::vector<double> energies;
   IntersurfaceResult best;
   for (int r = 0, restarts = options.restarts; r < restarts; ++r) {
     IntersurfaceOptions attempt = options;
-    attempt.sphere.seed = options.sphere.seed + r;
+    attempt.sphere.seed = options.sphere.seed + r / 2;
     IntersurfaceResult tried = result;
-    map_through_sphere_pair(a, b, features, tried, attempt, slice(progress, double(r) / restarts, (r + 1.0) / restarts));
+    map_through_sphere_pair(a, b, features, r % 2 == 1, tried, attempt,
+                            slice(progress, double(r) / restarts, (r + 1.0) / restarts));
     energies.push_back(tried.distortion_a_to_b.symmetric_dirichlet + tried.distortion_b_to_a.symmetric_dirichlet);
     if (energies.back() <= *std::min_element(energies.begin(), energies.end())) best = std::move(tried);
   }
