@@ -7,6 +7,8 @@ import subprocess
 import time
 from pathlib import Path
 
+import numpy as np
+
 ROOT = Path(__file__).resolve().parent.parent
 MESHES = ROOT.parent / "shared" / "meshes"
 CMAPS = ROOT / "build" / "cmaps"
@@ -23,6 +25,19 @@ def run_cmaps(*arguments: str) -> dict:
     result["wall"] = time.perf_counter() - start
     result["peak_mb"] = usage.ru_maxrss / 1024
     return result
+
+
+def farthest_points(vertices, count):
+    """Farthest-point sampling from vertex 0: the benchmarks' features on sets with shared vertex order."""
+    chosen, distance = [0], np.full(len(vertices), np.inf)
+    while len(chosen) < count:
+        distance = np.minimum(distance, np.linalg.norm(vertices - vertices[chosen[-1]], axis=1))
+        chosen.append(int(np.argmax(distance)))
+    return chosen
+
+
+def diagonal(vertices):
+    return float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0)))
 
 
 def machine() -> str:

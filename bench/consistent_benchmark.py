@@ -20,22 +20,10 @@ import time
 
 import numpy as np
 
-from bench_common import MESHES, ROOT, machine, write_section
+from bench_common import MESHES, ROOT, diagonal, farthest_points, machine, write_section
 
 sys.path.insert(0, str(ROOT / "addon"))
 from consistent_maps import _native  # noqa: E402
-
-
-def farthest_points(vertices, count):
-    chosen, distance = [0], np.full(len(vertices), np.inf)
-    while len(chosen) < count:
-        distance = np.minimum(distance, np.linalg.norm(vertices - vertices[chosen[-1]], axis=1))
-        chosen.append(int(np.argmax(distance)))
-    return chosen
-
-
-def diagonal(vertices):
-    return float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0)))
 
 
 def mapped_onto(member_map, points):

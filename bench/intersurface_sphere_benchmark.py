@@ -13,22 +13,13 @@ from pathlib import Path
 
 import numpy as np
 
-from bench_common import MESHES, ROOT, machine, run_cmaps, write_section
+from bench_common import MESHES, ROOT, diagonal, farthest_points, machine, run_cmaps, write_section
 
 sys.path.insert(0, str(ROOT / "addon"))
 from consistent_maps import _native  # noqa: E402
 
 CACTUS = MESHES / "sets" / "cactus"
 CACTUS_RESTARTS = (1, 6)
-
-
-def farthest_points(vertices, count):
-    """As bench/consistent_benchmark.py: farthest-point sampling from vertex 0."""
-    chosen, distance = [0], np.full(len(vertices), np.inf)
-    while len(chosen) < count:
-        distance = np.minimum(distance, np.linalg.norm(vertices - vertices[chosen[-1]], axis=1))
-        chosen.append(int(np.argmax(distance)))
-    return chosen
 
 
 def pair_features(directory, file, a, b):
@@ -42,10 +33,6 @@ def pair_features(directory, file, a, b):
 
 def read_obj_vertices(path):
     return np.array([line.split()[1:4] for line in open(path) if line.startswith("v ")], float)
-
-
-def diagonal(vertices):
-    return float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0)))
 
 
 def row(name, result, features, truth=""):
