@@ -26,24 +26,26 @@ def spherical_parameterization(vertices, triangles, *, effort, seed, threads, pr
         vertices, triangles, effort=effort, seed=seed, threads=threads, progress=progress)
 
 
-def consistent_spherical_parameterization(meshes, features, *, effort, seed, threads, progress):
-    """Maps of a set with every feature on one common sphere point (thesis 3.2).
+def consistent_spherical_parameterization(meshes, features, *, effort, seed, threads, progress, restarts=1):
+    """Maps of a set with every feature on one common sphere point (thesis 3.2), computed `restarts` times
+    (seeds seed, seed + 1, ...) keeping the run whose maps keep most of each member's own efficiency.
 
     meshes: [(vertices, triangles)]; features: (members, k) vertex indices. Returns a dict with
     'feature_locations' (k, 3) and 'members': per member (sphere, stats, extras), extras holding the
     map as a parameterized surface ('refined_vertices', 'triangles', 'refined_sphere').
     """
     return _native.consistent_spherical_parameterization(
-        meshes, features, effort=effort, seed=seed, threads=threads, progress=progress)
+        meshes, features, restarts=restarts, effort=effort, seed=seed, threads=threads, progress=progress)
 
 
-def intersurface_map(mesh_a, mesh_b, feature_pairs, *, effort, seed, threads, progress):
+def intersurface_map(mesh_a, mesh_b, feature_pairs, *, effort, seed, threads, progress, restarts=1):
     """The map between two closed meshes of equal genus (genus >= 1: through a consistent partition,
     Schreiner et al.), each pair [vertex of A, vertex of B] exactly onto each other: a dict with per vertex
     of A its triangle of B and barycentric weights ('a_to_b_triangle', 'a_to_b_barycentric'), likewise
-    'b_to_a_*', and 'genus', 'symmetric_dirichlet' (A to B, B to A), 'seconds'."""
-    return _native.intersurface_map(mesh_a, mesh_b, feature_pairs, effort=effort, seed=seed, threads=threads,
-                                    progress=progress)
+    'b_to_a_*', and 'genus', 'symmetric_dirichlet' (A to B, B to A), 'seconds'. Genus 0: the least
+    distorted of `restarts` maps."""
+    return _native.intersurface_map(mesh_a, mesh_b, feature_pairs, restarts=restarts, effort=effort, seed=seed,
+                                    threads=threads, progress=progress)
 
 
 def consistent_remesh(surfaces, feature_locations, resolution, *, threads):

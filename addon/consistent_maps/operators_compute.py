@@ -8,7 +8,8 @@ TIMER_STEP = 0.1
 
 
 def _options(context):
-    return {"effort": int(context.scene.consistent_maps.effort)}
+    settings = context.scene.consistent_maps
+    return {"effort": int(settings.effort), "restarts": settings.restarts}
 
 
 def _leave_edit_mode(context, objects):

@@ -153,6 +153,7 @@ class CM_PT_compute(_Panel, bpy.types.Panel):
         running = job.current()
         if running is None:
             layout.prop(settings, "effort")
+            layout.prop(settings, "restarts")
             layout.operator("consistent_maps.compute", icon='PLAY')
         else:
             row = layout.row()

@@ -43,6 +43,9 @@ class CM_Settings(bpy.types.PropertyGroup):
     active_member: IntProperty(name="Active Member")
     effort: EnumProperty(name="Effort", items=EFFORT_ITEMS, default='1',
                          description="How hard the optimizer works on reducing stretch")
+    restarts: IntProperty(name="Restarts", default=1, min=1, max=16,
+                          description="Compute several objects this many times (other random seeds) and keep the "
+                                      "best: with few features a run can twist one object's map around them")
     resolution: IntProperty(name="Resolution", default=64, min=2, max=1024,
                             description="Octahedral grid resolution n of the remeshes (even): n² + 2 vertices")
     morph_target: PointerProperty(type=bpy.types.Object, poll=_is_mesh, name="Target",

@@ -43,7 +43,7 @@ const char* const kUsage = R"(usage:
   cmaps sphere IN -o OUT [--seed N] [--effort 0|1|2] [--threads N] [--json]
   cmaps constrained IN --features FILE [--targets FILE] -o OUT [--refined-mesh PATH]
                     [--seed N] [--effort 0|1|2] [--threads N] [--json]
-  cmaps consistent IN IN ... --features FILE -o DIR [--remesh N] [--grid N] [--first K]
+  cmaps consistent IN IN ... --features FILE -o DIR [--remesh N] [--grid N] [--first K] [--restarts K]
                    [--seed N] [--effort 0|1|2] [--threads N] [--json]
   cmaps intersurface A B [--features FILE] -o DIR [--optimize R] [--restarts K] [--seed N] [--effort 0|1|2]
                      [--threads N] [--json]
@@ -120,11 +120,15 @@ options:
   --optimize R       rounds of distortion optimization of the inter-surface map
                      (0..100, default 2; 0 = the plain composition of the
                      two spherical maps, without A's map refitted to B's)
-  --restarts K       genus 0: compute the inter-surface map K times and keep
-                     the least distorted (1..100, default 1): restart k uses
-                     seed N + k/2, odd ones a consistent parameterization with
-                     carried guides; the optimization is local, so with few
-                     features restarts find better maps
+  --restarts K       intersurface, transfer (genus 0): compute the map K times
+                     and keep the least distorted (1..100, default 1): restart
+                     k uses seed N + k/2, odd ones a consistent
+                     parameterization with carried guides; the optimization is
+                     local, so with few features restarts find better maps.
+                     consistent: compute the set K times (seed N + k) and keep
+                     the one whose maps keep most of each input's own
+                     efficiency (with few features a run can twist one
+                     input's map around them)
   --seed N           random seed; equal seeds give equal results (default 1)
   --effort E         0 = fast preview, 1 = default, 2 = best quality
   --threads N        worker threads (default 2)
@@ -145,7 +149,7 @@ struct Arguments {
   std::string features, targets, refined_mesh;  // constrained only (features: consistent too)
   int remesh = 0, grid = 64, first = -1;        // consistent only
   bool remesh_given = false, grid_given = false, first_given = false;
-  int optimize = 2, restarts = 1;  // intersurface and transfer only
+  int optimize = 2, restarts = 1;  // optimize: intersurface and transfer only
   bool optimize_given = false, restarts_given = false;
   std::uint64_t seed = 1;
   int effort = 1;
@@ -209,10 +213,10 @@ Arguments parse(const std::vector<std::string>& args) {
                                                                                          : " needs -o OUT") +
                      " (see cmaps --help)");
   if (a.command == "check" && !a.output.empty()) throw UsageError("check takes no -o");
-  for (const auto& [option, given] :
-       {std::pair<const char*, bool>{"--optimize", a.optimize_given}, {"--restarts", a.restarts_given}})
-    if (a.command != "intersurface" && a.command != "transfer" && given)
-      throw UsageError(a.command + " takes no " + option + " (only intersurface and transfer do)");
+  if (a.optimize_given && a.command != "intersurface" && a.command != "transfer")
+    throw UsageError(a.command + " takes no --optimize (only intersurface and transfer do)");
+  if (a.restarts_given && a.command != "intersurface" && a.command != "transfer" && a.command != "consistent")
+    throw UsageError(a.command + " takes no --restarts (only consistent, intersurface and transfer do)");
   if (a.positions && a.command != "transfer") throw UsageError(a.command + " takes no --positions (only transfer does)");
   if (a.command != "consistent") {
     for (const auto& [option, given] : {std::pair<const char*, bool>{"--remesh", a.remesh_given},
@@ -649,6 +653,7 @@ void run_consistent(const Arguments& args, Outcome& out) {
   options.sphere.threads = args.threads;
   options.first = args.first;
   options.grid = args.grid;
+  options.restarts = args.restarts;
   const cmaps::ConsistentResult result =
       with_terminal_progress(!args.json && isatty(STDERR_FILENO), [&](const cmaps::ProgressCallback& progress) {
         return cmaps::consistent_spherical_parameterization(members, options, progress);
@@ -731,6 +736,9 @@ void run_consistent(const Arguments& args, Outcome& out) {
   out.outputs = JsonObject::array(outputs);
   out.first = result.first;
   out.json.add("grid", args.grid)
+      .add("restarts", args.restarts)
+      .add("restart", result.restart)
+      .add_json("restart_suitability", JsonObject::array(result.restart_suitability))
       .add("seconds_compute", result.seconds)
       .add("seed", static_cast<unsigned long long>(args.seed))
       .add("effort", args.effort)

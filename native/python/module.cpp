@@ -118,6 +118,10 @@ cmaps::TriangleMesh to_mesh(const py::handle& vertices, const py::handle& triang
   return mesh;
 }
 
+py::array_t<double> to_numpy(const std::vector<double>& values) {
+  return py::array_t<double>(py::ssize_t(values.size()), values.data());
+}
+
 py::array_t<double> to_numpy(const std::vector<cmaps::Vec3>& points) {
   py::array_t<double> array({py::ssize_t(points.size()), py::ssize_t(3)});
   auto a = array.mutable_unchecked<2>();
@@ -429,12 +433,14 @@ void require_grid_resolution(int n, const char* name) {
 }
 
 py::dict consistent_spherical_parameterization(const py::handle& meshes_data, const py::handle& features_data,
-                                               int first, int grid, std::uint64_t seed, int effort, int threads,
-                                               const py::object& progress) {
+                                               int first, int grid, int restarts, std::uint64_t seed, int effort,
+                                               int threads, const py::object& progress) {
   cmaps::ConsistentOptions options;
   options.sphere = sphere_options(seed, effort, threads, progress);
   options.grid = grid;
   options.first = first;
+  if (restarts < 1) raise(PyExc_ValueError, "restarts must be at least 1, got " + std::to_string(restarts));
+  options.restarts = restarts;
   require_grid_resolution(grid, "grid");
   std::vector<cmaps::TriangleMesh> meshes = to_meshes(meshes_data);
   if (meshes.size() < 2)
@@ -463,6 +469,9 @@ py::dict consistent_spherical_parameterization(const py::handle& meshes_data, co
   d["feature_locations"] = to_numpy(result.feature_locations);
   d["initial_locations"] = to_numpy(result.initial_locations);
   d["first"] = result.first;
+  d["restart"] = result.restart;
+  d["suitability"] = result.suitability;
+  d["restart_suitability"] = to_numpy(result.restart_suitability);
   d["seconds"] = seconds;
   d["members"] = maps;
   return d;
@@ -558,7 +567,7 @@ py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, co
   d["sphere_flipped"] = result.sphere_flipped;
   d["stretch_efficiency"] = py::make_tuple(result.efficiency_a, result.efficiency_b);
   d["steiner"] = py::make_tuple(result.steiner_a, result.steiner_b);
-  d["restart_dirichlet"] = py::array_t<double>(py::ssize_t(result.restart_dirichlet.size()), result.restart_dirichlet.data());
+  d["restart_dirichlet"] = to_numpy(result.restart_dirichlet);
   d["seconds"] = seconds;
   d["base_vertices"] = result.base_vertices;
   d["base_triangles"] = result.base_triangles;
@@ -932,15 +941,17 @@ PYBIND11_MODULE(_native, m) {
         "(k, 3), the targets used. Raises InvalidMeshError for unsupported input or bad features/targets,\n"
         "Cancelled when progress returns False.");
   m.def("consistent_spherical_parameterization", &consistent_spherical_parameterization, py::arg("meshes"),
-        py::arg("features"), py::kw_only(), py::arg("first") = -1, py::arg("grid") = 64, py::arg("seed") = 1,
-        py::arg("effort") = 1, py::arg("threads") = 2, py::arg("progress") = py::none(),
+        py::arg("features"), py::kw_only(), py::arg("first") = -1, py::arg("grid") = 64, py::arg("restarts") = 1,
+        py::arg("seed") = 1, py::arg("effort") = 1, py::arg("threads") = 2, py::arg("progress") = py::none(),
         "Consistent spherical parameterization of a set (thesis 3.2): every feature lands on one common\n"
         "point of the sphere on every member. meshes: sequence of (vertices, triangles), closed genus 0.\n"
         "features: (members, k) integer vertex indices, -1 where a member lacks the feature; every member\n"
         "needs at least 3 and one member all of them. first: member seeding the locations (-1: the first\n"
-        "with every feature); grid: even resolution of the intermediate octahedral remeshes. Returns a dict:\n"
-        "'feature_locations' (k, 3) common unit vectors, 'initial_locations' (k, 3) from the first member\n"
-        "alone, 'first', 'seconds', and 'members': per member (sphere, stats, extras) as returned by\n"
+        "with every feature); grid: even resolution of the intermediate octahedral remeshes; restarts: runs\n"
+        "with seeds seed, seed + 1, ..., keeping the one whose maps keep most of each member's own\n"
+        "efficiency. Returns a dict: 'feature_locations' (k, 3) common unit vectors, 'initial_locations'\n"
+        "(k, 3) from the first member alone, 'first', 'restart' (the run kept), 'suitability' (its mean\n"
+        "efficiency over the members' own), 'restart_suitability' (per run), 'seconds', and 'members': per member (sphere, stats, extras) as returned by\n"
         "constrained_spherical_parameterization (extras['refined_vertices'], extras['triangles'] and\n"
         "extras['refined_sphere'] are the map as a parameterized surface, Steiner vertices included).\n"
         "Raises InvalidMeshError naming the member for bad meshes or features, Cancelled when progress\n"

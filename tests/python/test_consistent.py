@@ -211,6 +211,17 @@ def test_faces_ringed_only(native):
         assert np.abs(sphere[table[0]] - result["feature_locations"]).max() <= 1e-12
 
 
+def test_restarts_keep_the_best_run(native, meshes, features, result):
+    """Two runs (seeds 1 and 2): the kept one has the higher suitability and is the single run with its seed."""
+    both = native.consistent_spherical_parameterization(meshes, features, grid=GRID, restarts=2)
+    scores = both["restart_suitability"]
+    assert scores.shape == (2,) and both["restart"] == int(np.argmax(scores)) and both["suitability"] == scores.max()
+    assert 0.85 < scores.min() and result["restart"] == 0 and result["restart_suitability"].shape == (1,)
+    single = native.consistent_spherical_parameterization(meshes, features, grid=GRID, seed=1 + both["restart"])
+    for (sphere, _, _), (kept, _, _) in zip(single["members"], both["members"]):
+        assert (sphere == kept).all()
+
+
 def test_rejects_bad_input(native, meshes, features):
     two = meshes[:2]
     good = features[:2].copy()
@@ -235,7 +246,8 @@ def test_rejects_bad_input(native, meshes, features):
             native.consistent_spherical_parameterization(members, table, grid=GRID)
         assert text in str(info.value), (text, str(info.value))
     for keywords, text in [({"grid": 33}, "grid must be even"), ({"first": 2}, "first must be -1"),
-                           ({"effort": 3}, "effort must be 0, 1 or 2")]:
+                           ({"effort": 3}, "effort must be 0, 1 or 2"),
+                           ({"restarts": 0}, "restarts must be at least 1")]:
         with pytest.raises(ValueError, match=re.escape(text)):
             native.consistent_spherical_parameterization(two, good, **keywords)
 
@@ -304,6 +316,7 @@ def test_cli_json(cli, meshes, result):
     out, report = cli
     m = len(meshes)
     assert report["error"] is None and report["first"] == 0
+    assert report["restarts"] == 1 and report["restart"] == 0 and len(report["restart_suitability"]) == 1
     assert report["faces"] == [len(t) for _, t in meshes]
     for key in ("stretch_efficiency", "flipped", "steiner_vertices", "bijective"):
         assert len(report[key]) == m

@@ -240,8 +240,9 @@ def test_cli_usage(cmaps_binary, tmp_path):
     assert result.returncode == 2 and "sphere takes no --optimize (only intersurface and transfer do)" in result.stderr
     result = run(cmaps_binary, "intersurface", SPOT, SPHERE, "-o", tmp_path / "out", "--restarts", "0")
     assert result.returncode == 2 and "--restarts expects an integer in [1, 100], got '0'" in result.stderr
-    result = run(cmaps_binary, "consistent", SPOT, SPHERE, "-o", tmp_path / "out", "--restarts", "2")
-    assert result.returncode == 2 and "consistent takes no --restarts (only intersurface and transfer do)" in result.stderr
+    result = run(cmaps_binary, "sphere", SPOT, "-o", tmp_path / "s.obj", "--restarts", "2")
+    assert result.returncode == 2 and "sphere takes no --restarts (only consistent, intersurface and transfer do)" \
+        in result.stderr
 
 
 def test_continue_across_seams(native):

@@ -146,11 +146,19 @@ ConstrainedResult parameterize_to_locations(const ConsistentMember& member, cons
                                                guide);
 }
 
-ConsistentResult consistent_spherical_parameterization(const std::vector<ConsistentMember>& members,
-                                                       const ConsistentOptions& options,
-                                                       const ProgressCallback& progress) {
-  validate(members, options);
-  const auto start = std::chrono::steady_clock::now();
+namespace {
+
+// Each member's own quick unconstrained map: what a constrained map lays its
+// paths out in by default (constrained_parameterization.cpp), computed once
+// for all of a run's constrained maps.
+struct OwnMap {
+  std::vector<Vec3> sphere;
+  double efficiency = 0;
+};
+
+// Steps 1-6 once, with options.sphere's seed.
+ConsistentResult consistent_run(const std::vector<ConsistentMember>& members, const ConsistentOptions& options,
+                                const std::vector<OwnMap>& own, const ProgressCallback& progress) {
   const int n = static_cast<int>(members.size());
   ConsistentResult result;
   result.first = choose_first(members, options.first);
@@ -172,15 +180,9 @@ ConsistentResult consistent_spherical_parameterization(const std::vector<Consist
       spherical_parameterization(close_holes(outward(first.mesh)).mesh, options.sphere, next_share());
   for (int v : first.features) result.initial_locations.push_back(seed.sphere[v]);
 
-  // Each member's own quick unconstrained map: what a constrained map lays
-  // its paths out in by default (constrained_parameterization.cpp); computed
-  // once here for all its constrained maps.
   SphereOptions quick = options.sphere;
   quick.effort = 0;
-  std::vector<std::vector<Vec3>> own_guides(n);
-  for (int i = 0; i < n && carry; ++i)
-    own_guides[i] = spherical_parameterization(close_holes(outward(members[i].mesh)).mesh, quick).sphere;
-  const auto own_guide = [&](int i) { return carry ? &own_guides[i] : nullptr; };  // null: computed inside
+  const auto own_guide = [&](int i) { return carry ? &own[i].sphere : nullptr; };  // null: computed inside
 
   // 2. Every member mapped to them (quickly: the maps before the last round
   // only carry the correspondence to the next).
@@ -238,7 +240,7 @@ ConsistentResult consistent_spherical_parameterization(const std::vector<Consist
       if (last || map.report.efficiency < maps[i].report.efficiency) {
         ConstrainedResult along_own = parameterize_to_locations(members[i], locations, round_options,
                                                                 last ? next_share() : ProgressCallback{},
-                                                                ReferenceMap{}, &own_guides[i]);
+                                                                ReferenceMap{}, &own[i].sphere);
         if (along_own.report.efficiency > map.report.efficiency) map = std::move(along_own);
       }
       maps[i] = std::move(map);
@@ -246,9 +248,55 @@ ConsistentResult consistent_spherical_parameterization(const std::vector<Consist
   }
   result.feature_locations = std::move(locations);
   result.members = std::move(maps);
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
+
+// How well a run suits every member: the mean of its maps' efficiencies over
+// the members' own. A set whose maps wind wrongly around the features for
+// some member (a twisted arm) loses efficiency there, so this ranks runs
+// nearly like their correspondence error does.
+double suitability(const ConsistentResult& run, const std::vector<double>& own_efficiency) {
+  double sum = 0;
+  for (size_t i = 0; i < own_efficiency.size(); ++i)
+    sum += run.members[i].report.efficiency / std::max(own_efficiency[i], 1e-12);
+  return sum / double(own_efficiency.size());
+}
+
+}  // namespace
+
+ConsistentResult consistent_spherical_parameterization(const std::vector<ConsistentMember>& members,
+                                                       const ConsistentOptions& options,
+                                                       const ProgressCallback& progress) {
+  validate(members, options);
+  const auto start = std::chrono::steady_clock::now();
+  const int n = static_cast<int>(members.size()), restarts = std::max(1, options.restarts);
+  const bool have_own = options.carry_guides || restarts > 1;
+  std::vector<double> own_efficiency;  // of the first run's own maps: one yardstick for every run
+  std::vector<double> scores;
+  ConsistentResult best;
+  for (int k = 0; k < restarts; ++k) {
+    ConsistentOptions run_options = options;
+    run_options.sphere.seed = options.sphere.seed + std::uint64_t(k);
+    // The own maps differ by seed, and so do the paths laid out along them.
+    std::vector<OwnMap> own(n);
+    for (int i = 0; i < n && have_own; ++i) {
+      SphereOptions quick = run_options.sphere;
+      quick.effort = 0;
+      SphereResult r = spherical_parameterization(close_holes(outward(members[i].mesh)).mesh, quick);
+      own[i] = {std::move(r.sphere), r.report.efficiency};
+      if (k == 0) own_efficiency.push_back(r.report.efficiency);
+    }
+    ConsistentResult run = consistent_run(members, run_options, own, slice(progress, double(k) / restarts,
+                                                                           double(k + 1) / restarts));
+    run.suitability = have_own ? suitability(run, own_efficiency) : 0;
+    scores.push_back(run.suitability);
+    if (k == 0 || run.suitability > best.suitability) best = std::move(run), best.restart = k;
+  }
+  best.restart_suitability = std::move(scores);
+  best.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return best;
+}
+
 
 namespace {
 
