@@ -174,6 +174,33 @@ TEST(HigherGenusMap, ReorderedCopyMapsOntoItself) {
   EXPECT_EQ(r.distortion_b_to_a.flipped, 0);
 }
 
+// The torus against a stretched (1.5, 1, 0.7), re-indexed copy: the true
+// correspondence is known. B's paths and cycles follow A's in A's frame
+// (intersurface/path_guide.h), so the handles match: without pairs 5.6 %
+// mean error (31 % before: the automatic pair and the cycles did not
+// correspond), with 16 farthest-point pairs 2.1 % (3.0 % before).
+TEST(HigherGenusMap, StretchedCopyMatchesItsHandles) {
+  const TriangleMesh a = read_mesh(shared_mesh("higher-genus/torus.obj"));
+  const int n = int(a.vertices.size());
+  std::vector<int> new_index(n);
+  for (int v = 0; v < n; ++v) new_index[v] = int((std::int64_t(v) * 7919 + 13) % n);
+  TriangleMesh b;
+  b.vertices.resize(n);
+  for (int v = 0; v < n; ++v) b.vertices[new_index[v]] = a.vertices[v].cwiseProduct(Vec3(1.5, 1.0, 0.7));
+  for (const Triangle& t : a.triangles) b.triangles.push_back({new_index[t[0]], new_index[t[1]], new_index[t[2]]});
+  for (const auto& [count, tolerance] : {std::pair{0, 0.1}, {16, 0.04}}) {
+    std::vector<FeaturePair> pairs;
+    if (count > 0)
+      for (int v : test::farthest_points(a, count)) pairs.push_back({v, new_index[v]});
+    const IntersurfaceResult r = intersurface_map(a, b, pairs);
+    double error = 0;
+    for (int v = 0; v < n; ++v) error += (r.a_on_b[v] - b.vertices[new_index[v]]).norm();
+    error /= n * diagonal(b);
+    std::printf("  %d pairs: mean error %.2f %% of the diagonal\n", count, 100 * error);
+    EXPECT_LT(error, tolerance) << count << " pairs";
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Pairs, HigherGenusPartition, ::testing::ValuesIn(kPairs));
 INSTANTIATE_TEST_SUITE_P(Pairs, HigherGenusMap, ::testing::ValuesIn(kPairs));
 

@@ -33,9 +33,12 @@
 // patch and its partner are parameterized onto one canonical triangle
 // (boundary by arc length, interior by a convex-combination embedding), and
 // a vertex of A maps to the point of B with the same canonical coordinates.
-// Continuous and bijective; not yet optimized for distortion (no
-// progressive-mesh refinement). With zero pairs, one pair is chosen: the
-// vertex farthest from the mesh's centroid on each mesh.
+// Paths on B are kept near A's paths with B brought into A's frame by a
+// transform fitted to the pairs (intersurface/path_guide.h), so that the
+// handles' cycles correspond for meshes posed alike. Continuous and
+// bijective; A's embedding is locally optimized (no progressive-mesh
+// refinement). With zero pairs, one pair is chosen: A's vertex farthest from
+// its centroid and B's vertex nearest it with centroids and areas matched.
 #pragma once
 #include <array>
 #include <vector>

@@ -11,6 +11,7 @@
 #include <unordered_set>
 
 #include "consistent_maps/errors.h"
+#include "intersurface/path_guide.h"
 #include "paths/mesh_search.h"
 
 namespace cmaps {
@@ -134,8 +135,12 @@ class Side {
     return best;
   }
 
-  std::vector<int> trace(int from, int to, const Sector* leave, const Sector* enter, bool midpoints) const {
+  using StepFactor = std::function<double(const Vec3&)>;
+
+  std::vector<int> trace(int from, int to, const Sector* leave, const Sector* enter, bool midpoints,
+                         const StepFactor* factor) const {
     SearchRules rules;
+    rules.step_factor = factor;
     rules.blocked = &blocked;
     rules.closed_edges = &path_edges;
     rules.leave = leave;
@@ -143,6 +148,11 @@ class Side {
     rules.midpoints = midpoints;
     rules.midpoint_penalty = kMidpointPenalty;
     return shortest_path(mesh, feature[from], feature[to], rules);
+  }
+
+  double step(int u, int w, const StepFactor* factor) const {
+    const double length = (mesh.position(w) - mesh.position(u)).norm();
+    return factor ? length * 0.5 * ((*factor)(mesh.position(u)) + (*factor)(mesh.position(w))) : length;
   }
 
   // Turns a traced node sequence into mesh vertices (splitting the edges of
@@ -203,9 +213,10 @@ class Side {
   }
 
   // Dijkstra over unblocked vertices (of the triangles in `faces` when
-  // given) from `sources`; distances and parents.
+  // given) from `sources`; distances and parents; steps weighted as in
+  // SearchRules::step_factor when `factor` is given.
   void dijkstra(const std::vector<int>& sources, const std::vector<char>* allowed, std::vector<double>& dist,
-                std::vector<int>& parent) const {
+                std::vector<int>& parent, const StepFactor* factor = nullptr) const {
     const int n = mesh.vertex_count();
     dist.assign(n, kInf);
     parent.assign(n, -1);
@@ -221,7 +232,7 @@ class Side {
       if (d > dist[u]) continue;
       for (int w : mesh.ring(u)) {
         if (blocked[w] || (allowed && !(*allowed)[w])) continue;
-        const double nd = d + (mesh.position(w) - mesh.position(u)).norm();
+        const double nd = d + step(u, w, factor);
         if (nd < dist[w]) {
           dist[w] = nd;
           parent[w] = u;
@@ -235,7 +246,7 @@ class Side {
 class Partitioner {
  public:
   Partitioner(const TriangleMesh& a, const TriangleMesh& b, const std::vector<std::array<int, 2>>& features, int genus)
-      : genus_(genus) {
+      : genus_(genus), guide_(pair_positions(a, features, 0), pair_positions(b, features, 1), a, b) {
     sides_.emplace_back(a);
     sides_.emplace_back(b);
     for (int s = 0; s < 2; ++s) {
@@ -256,6 +267,13 @@ class Partitioner {
   }
 
  private:
+  static std::vector<Vec3> pair_positions(const TriangleMesh& m, const std::vector<std::array<int, 2>>& pairs,
+                                          int s) {
+    std::vector<Vec3> positions;
+    for (const auto& p : pairs) positions.push_back(m.vertices[p[s]]);
+    return positions;
+  }
+
   int add_pair(int va, int vb) {
     sides_[0].add_feature(va);
     sides_[1].add_feature(vb);
@@ -301,11 +319,19 @@ class Partitioner {
       };
       const auto [restrict_i, after_i] = rule(at_i, used_i);
       const auto [restrict_j, after_j] = rule(at_j, used_j);
+      // B's half keeps near A's (path_guide.h).
+      Side::StepFactor near_a;
+      if (s == 1) {
+        std::vector<Vec3> on_a;
+        for (int node : nodes[0]) on_a.push_back(node_position(sides_[0].mesh, node, vertices[0]));
+        near_a = guide_.near(on_a);
+      }
       for (bool midpoints : {false, true}) {
         vertices[s] = side.mesh.vertex_count();
         const Sector leave = side.after(i, after_i, around_i, vertices[s], midpoints);
         const Sector enter = side.after(j, after_j, around_j, vertices[s], midpoints);
-        nodes[s] = side.trace(i, j, restrict_i ? &leave : nullptr, restrict_j ? &enter : nullptr, midpoints);
+        nodes[s] = side.trace(i, j, restrict_i ? &leave : nullptr, restrict_j ? &enter : nullptr, midpoints,
+                              s == 1 ? &near_a : nullptr);
         if (!nodes[s].empty()) {
           if (s == 0) {
             used_i = side.gap_of(i, nodes[s][1], around_i, vertices[s], midpoints);
@@ -430,8 +456,10 @@ class Partitioner {
   }
 
   // The shortest non-separating cycle found by tree-cotree in the single
-  // region of side s: a vertex list from its apex back to it.
-  std::vector<int> nonseparating_cycle(int s) {
+  // region of side s: a vertex list from its apex back to it. On B, `on_a`
+  // is A's cycle: the tree grows from the vertex nearest its apex and
+  // lengths are weighted by the distance from it (path_guide.h).
+  std::vector<int> nonseparating_cycle(int s, const std::vector<Vec3>& on_a = {}) {
     for (int attempt = 0; attempt < 2; ++attempt) {
       Side& side = sides_[s];
       std::vector<double> far;
@@ -441,11 +469,22 @@ class Partitioner {
         if (side.blocked[v]) sources.push_back(v);
       side.dijkstra(sources, nullptr, far, parent);
       int root = -1;
+      std::vector<int> free;
       for (int v = 0; v < side.mesh.vertex_count(); ++v)
-        if (!side.blocked[v] && std::isfinite(far[v]) && (root < 0 || far[v] > far[root])) root = v;
+        if (!side.blocked[v] && std::isfinite(far[v])) {
+          free.push_back(v);
+          if (root < 0 || far[v] > far[root]) root = v;
+        }
+      Side::StepFactor near_a;
+      if (!on_a.empty() && root >= 0) {
+        std::vector<Vec3> positions;
+        for (int v : free) positions.push_back(side.mesh.position(v));
+        root = free[guide_.nearest(on_a.front(), positions)];
+        near_a = guide_.near(on_a);
+      }
       if (root >= 0) {
         std::vector<double> dist;
-        side.dijkstra({root}, nullptr, dist, parent);
+        side.dijkstra({root}, nullptr, dist, parent, on_a.empty() ? nullptr : &near_a);
         const int edges = side.mesh.edge_count();
         std::vector<char> tree(edges, 0), cotree(edges, 0);
         for (int v = 0; v < side.mesh.vertex_count(); ++v)
@@ -499,7 +538,7 @@ class Partitioner {
           if (u < 0 || tree[e] || cotree[e] || side.path_edges.count(e) || side.blocked[u] || side.blocked[w]) continue;
           if (!std::isfinite(dist[u]) || !std::isfinite(dist[w])) continue;
           const double length =
-              dist[u] + dist[w] + (side.mesh.position(u) - side.mesh.position(w)).norm() - 2 * dist[lca(u, w)];
+              dist[u] + dist[w] + side.step(u, w, on_a.empty() ? nullptr : &near_a) - 2 * dist[lca(u, w)];
           if (length < best) best = length, bu = u, bw = w;
         }
         if (bu >= 0) {
@@ -528,9 +567,21 @@ class Partitioner {
   // network; the cycle becomes two paths through a second new pair.
   void handle_loop() {
     std::vector<int> cycle[2];
+    std::vector<Vec3> on_a;
     for (int s = 0; s < 2; ++s) {
-      cycle[s] = nonseparating_cycle(s);
+      cycle[s] = nonseparating_cycle(s, on_a);
       Side& side = sides_[s];
+      if (s == 0) {
+        for (int v : cycle[0]) on_a.push_back(side.mesh.position(v));
+      } else {
+        // Start B's cycle (the new pair) where A's starts.
+        std::vector<Vec3> positions;
+        for (int v : cycle[1]) positions.push_back(side.mesh.position(v));
+        const int k = guide_.nearest(on_a.front(), positions) % int(cycle[1].size() - 1);
+        std::vector<int> turned(cycle[1].begin() + k, cycle[1].end() - 1);
+        turned.insert(turned.end(), cycle[1].begin(), cycle[1].begin() + k + 1);
+        cycle[1] = std::move(turned);
+      }
       for (size_t i = 0; i + 1 < cycle[s].size(); ++i) side.path_edges.insert(side.mesh.edge(cycle[s][i], cycle[s][i + 1]));
       for (int v : cycle[s]) side.blocked[v] = 1;
     }
@@ -565,6 +616,12 @@ class Partitioner {
       middle[s] = 1;
       for (int i = 1; i + 1 < int(cycle[s].size()); ++i)
         if (std::abs(at[i] - total / 2) < std::abs(at[middle[s]] - total / 2)) middle[s] = i;
+    }
+    {  // B's second pair where A's lies.
+      const Side& side = sides_[1];
+      std::vector<Vec3> inner;
+      for (size_t i = 1; i + 1 < cycle[1].size(); ++i) inner.push_back(side.mesh.position(cycle[1][i]));
+      middle[1] = 1 + guide_.nearest(sides_[0].mesh.position(cycle[0][middle[0]]), inner);
     }
     const int q = add_pair(cycle[0][middle[0]], cycle[1][middle[1]]);
     for (int s = 0; s < 2; ++s) {
@@ -722,6 +779,7 @@ class Partitioner {
   }
 
   int genus_;
+  PathGuide guide_;
   std::vector<Side> sides_;
   double scale_[2] = {1, 1};
   std::vector<std::array<int, 2>> edges_;

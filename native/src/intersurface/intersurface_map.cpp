@@ -25,6 +25,7 @@
 #include "intersurface/consistent_partition.h"
 #include "intersurface/patch_map_optimization.h"
 #include "intersurface/patch_parameterization.h"
+#include "intersurface/path_guide.h"
 
 namespace cmaps {
 namespace {
@@ -306,7 +307,12 @@ void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, Intersurf
   const int given = int(result.features.size());
   std::vector<std::array<int, 2>> pairs;
   for (const FeaturePair& f : result.features) pairs.push_back({f.a, f.b});
-  if (pairs.empty()) pairs.push_back({farthest_from_centroid(a), farthest_from_centroid(b)});
+  if (pairs.empty()) {
+    // A's vertex farthest from its centroid, and B's nearest to it with the
+    // centroids and areas matched (meshes posed alike get a matching pair).
+    const int far_a = farthest_from_centroid(a);
+    pairs.push_back({far_a, PathGuide({}, {}, a, b).nearest(a.vertices[far_a], b.vertices)});
+  }
   result.seconds_features = seconds_since(stage);
 
   // Paths keep cyclic orders by each mesh's own orientation: B is turned

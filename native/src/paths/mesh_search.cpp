@@ -53,9 +53,10 @@ std::vector<int> shortest_path(const EditableMesh& mesh, int source, int target,
       return;
     }
     if (u == source && rules.leave && !rules.leave->allows(w)) return;
-    const Vec3 pw = node_position(mesh, w, vertices);
-    double step = (pw - node_position(mesh, u, vertices)).norm();
+    const Vec3 pw = node_position(mesh, w, vertices), pu = node_position(mesh, u, vertices);
+    double step = (pw - pu).norm();
     if (u >= vertices || w >= vertices) step *= 1 + rules.midpoint_penalty;
+    if (rules.step_factor) step *= 0.5 * ((*rules.step_factor)(pu) + (*rules.step_factor)(pw));
     if (cost[u] + step < cost[w]) {
       cost[w] = cost[u] + step;
       parent[w] = u;

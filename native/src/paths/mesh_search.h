@@ -3,6 +3,7 @@
 // vertex, node V + e the midpoint of edge e, with V = vertex_count() at the
 // time of the search.
 #pragma once
+#include <functional>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -29,6 +30,9 @@ struct SearchRules {
   const Sector* enter = nullptr;   // how it may enter the target
   bool midpoints = false;
   double midpoint_penalty = 1.0;   // a step touching a midpoint costs 1 + this times its length
+  // Optional, at least 1 everywhere (so the A* estimate stays a lower bound):
+  // a step costs its length times the mean of this at its two ends.
+  const std::function<double(const Vec3&)>* step_factor = nullptr;
 };
 
 // Node sequence from source to target, empty when none exists.

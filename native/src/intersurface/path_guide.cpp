@@ -1,0 +1,93 @@
+#include "intersurface/path_guide.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace cmaps {
+namespace {
+
+constexpr double kPull = 4;           // factor growth per sqrt(area) of distance from A's path
+constexpr int kAffinePairs = 4;       // fewer pairs: a similarity (3) or centroids and areas
+constexpr double kMaxAnisotropy = 4;  // an affine fit stretching more than this is not trusted
+constexpr int kGuidePoints = 64;      // A's path is resampled to at most this many points
+
+double area(const TriangleMesh& m) {
+  double sum = 0;
+  for (const Triangle& t : m.triangles)
+    sum += 0.5 * (m.vertices[t[1]] - m.vertices[t[0]]).cross(m.vertices[t[2]] - m.vertices[t[0]]).norm();
+  return sum;
+}
+
+Vec3 centroid(const std::vector<Vec3>& points) {
+  Vec3 c = Vec3::Zero();
+  for (const Vec3& p : points) c += p;
+  return c / double(std::max<size_t>(1, points.size()));
+}
+
+double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 d = b - a;
+  const double length = d.squaredNorm();
+  const double t = length > 0 ? std::clamp((p - a).dot(d) / length, 0.0, 1.0) : 0.0;
+  return (p - (a + t * d)).norm();
+}
+
+}  // namespace
+
+PathGuide::PathGuide(const std::vector<Vec3>& on_a, const std::vector<Vec3>& on_b, const TriangleMesh& a,
+                     const TriangleMesh& b) {
+  const double area_a = area(a), area_b = area(b);
+  scale_a_ = std::sqrt(std::max(area_a, 1e-300));
+  const int n = int(std::min(on_a.size(), on_b.size()));
+  Eigen::Matrix3Xd from(3, n), to(3, n);
+  for (int i = 0; i < n; ++i) from.col(i) = on_b[i], to.col(i) = on_a[i];
+  bool fitted = false;
+  if (n >= kAffinePairs) {
+    // Least squares [x_b 1] M = x_a.
+    Eigen::MatrixXd lhs(n, 4), rhs(n, 3);
+    for (int i = 0; i < n; ++i) lhs.row(i) << on_b[i].transpose(), 1.0, rhs.row(i) = on_a[i].transpose();
+    const Eigen::MatrixXd m = lhs.colPivHouseholderQr().solve(rhs);
+    const Eigen::Matrix3d linear = m.topRows(3).transpose();
+    const Eigen::Vector3d sv = linear.jacobiSvd().singularValues();
+    if (linear.determinant() > 0 && sv.minCoeff() > 0 && sv.maxCoeff() < kMaxAnisotropy * sv.minCoeff()) {
+      transform_.linear() = linear;
+      transform_.translation() = m.row(3).transpose();
+      fitted = true;
+    }
+  }
+  if (!fitted && n >= 3) {
+    const Eigen::Matrix4d similarity = Eigen::umeyama(from, to, true);
+    if (similarity.allFinite() && similarity.topLeftCorner<3, 3>().determinant() > 0) {
+      transform_.matrix() = similarity;
+      fitted = true;
+    }
+  }
+  if (!fitted) {
+    const double s = std::sqrt(area_a / std::max(area_b, 1e-300));
+    transform_ = Eigen::Translation3d(centroid(a.vertices)) * Eigen::Scaling(s) *
+                 Eigen::Translation3d(-centroid(b.vertices));
+  }
+}
+
+std::function<double(const Vec3&)> PathGuide::near(const std::vector<Vec3>& a_path) const {
+  std::vector<Vec3> points;
+  const size_t step = std::max<size_t>(1, (a_path.size() + kGuidePoints - 1) / kGuidePoints);
+  for (size_t i = 0; i < a_path.size(); i += step) points.push_back(a_path[i]);
+  if (!a_path.empty() && (a_path.size() - 1) % step != 0) points.push_back(a_path.back());
+  return [points = std::move(points), this](const Vec3& on_b) {
+    const Vec3 p = to_a(on_b);
+    double d = points.size() == 1 ? (p - points[0]).norm() : std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i + 1 < points.size(); ++i) d = std::min(d, distance_to_segment(p, points[i], points[i + 1]));
+    return 1 + kPull * d / scale_a_;
+  };
+}
+
+int PathGuide::nearest(const Vec3& a_point, const std::vector<Vec3>& b_points) const {
+  int best = 0;
+  for (int i = 1; i < int(b_points.size()); ++i)
+    if ((to_a(b_points[i]) - a_point).squaredNorm() < (to_a(b_points[best]) - a_point).squaredNorm()) best = i;
+  return best;
+}
+
+}  // namespace cmaps
