@@ -10,6 +10,9 @@
 
 namespace cmaps {
 
+// Barycentric coordinates of p in the 2D triangle c ({-1, -1, -1} when c is degenerate).
+std::array<double, 3> barycentric(const Vec2& p, const std::array<Vec2, 3>& c);
+
 class PatchLocator {
  public:
   // `faces`: the patch's triangles of `side`, `uv` their corners' canonical points.
