@@ -10,8 +10,7 @@ namespace {
 
 const double kHeight = std::sqrt(3.0) / 2;  // of the canonical triangle (0, 0), (1, 0), (1/2, kHeight)
 
-}  // namespace
-
+// Barycentric coordinates of p in the 2D triangle c.
 std::array<double, 3> barycentric(const Vec2& p, const std::array<Vec2, 3>& c) {
   const Vec2 b = c[1] - c[0], d = c[2] - c[0], q = p - c[0];
   const double det = b.x() * d.y() - b.y() * d.x();
@@ -20,6 +19,8 @@ std::array<double, 3> barycentric(const Vec2& p, const std::array<Vec2, 3>& c) {
   const double t = (b.x() * q.y() - b.y() * q.x()) / det;
   return {1 - s - t, s, t};
 }
+
+}  // namespace
 
 PatchLocator::PatchLocator(const PartitionSide& side, const std::unordered_map<int, Vec2>& uv,
                            const std::vector<int>& faces)

@@ -202,37 +202,25 @@ std::vector<InputLocation> map_corners(const PartitionSide& source, const PatchP
   for (int f = 0; f < int(source.mesh.triangles().size()); ++f) refined[source.mesh.input_triangle(f)].push_back(f);
   std::vector<std::pair<int, Vec2>> points(3 * std::size_t(triangles));
   parallel_for(triangles, threads, [&](int t) {
-    // Points of t as their weights on its corners 1 and 2 (an affine chart of t).
+    // t's refined faces in an affine chart of t: a point's weights on t's corners 1 and 2.
     const Triangle& corners = source_input.triangles[t];
-    const auto chart = [&](int v) {
-      const InputPoint& origin = source.mesh.surface_point(v);
-      Vec2 q = Vec2::Zero();
-      for (int j = 0; j < 3; ++j)
-        for (int k = 1; k < 3; ++k)
-          if (origin.vertices[j] >= 0 && origin.vertices[j] == corners[k]) q[k - 1] += origin.weights[j];
-      return q;
-    };
-    std::vector<std::array<Vec2, 3>> faces;
-    for (int f : refined[t]) {
-      const Triangle& c = source.mesh.triangles()[f];
-      faces.push_back({chart(c[0]), chart(c[1]), chart(c[2])});
-    }
+    std::unordered_map<int, Vec2> chart;
+    for (int f : refined[t])
+      for (int v : source.mesh.triangles()[f]) {
+        const InputPoint& origin = source.mesh.surface_point(v);
+        Vec2& q = chart[v] = Vec2::Zero();
+        for (int j = 0; j < 3; ++j)
+          for (int k = 1; k < 3; ++k)
+            if (origin.vertices[j] == corners[k]) q[k - 1] += origin.weights[j];
+      }
+    const PatchLocator locator(source, chart, refined[t]);
     for (int k = 0; k < 3; ++k) {
       Vec2 p = Vec2::Constant(kCornerNudge);
       if (k > 0) p[k - 1] = 1 - 2 * kCornerNudge;
-      // The refined face holding p (the one it is least outside of, for rounding).
-      int best = 0;
-      std::array<double, 3> w{};
-      double score = -1e300;
-      for (int i = 0; i < int(faces.size()); ++i) {
-        const auto b = barycentric(p, faces[i]);
-        if (std::min({b[0], b[1], b[2]}) > score) score = std::min({b[0], b[1], b[2]}), best = i, w = b;
-      }
-      const int face = refined[t][best], patch = source.patch[face];
-      double sum = 0;
-      for (double& b : w) sum += (b = std::max(0.0, b));
+      const auto [face, w] = locator.locate(p);
+      const int patch = source.patch[face];
       Vec2 uv = Vec2::Zero();
-      for (int j = 0; j < 3; ++j) uv += w[j] / sum * source_uv.uv[patch].at(source.mesh.triangles()[face][j]);
+      for (int j = 0; j < 3; ++j) uv += w[j] * source_uv.uv[patch].at(source.mesh.triangles()[face][j]);
       points[3 * std::size_t(t) + k] = {patch, uv};
     }
   });
