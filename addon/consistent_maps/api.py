@@ -83,7 +83,9 @@ class Outcome:
     members: list
     feature_names: list
     feature_locations: list = field(default_factory=list)
-    pair_maps: list = None  # two objects of genus >= 1: per task (triangle (n,), weights (n, 3)) on the other
+    # Two objects of genus >= 1: per task (triangle (n,), weights (n, 3)) of its vertices on the other, then
+    # (triangle (loops,), weights (loops, 3)) of its corners (loops), each from a point of its own face
+    pair_maps: list = None
 
 
 def _object_problems(objects):
@@ -193,15 +195,19 @@ def _run_pair(tasks, names, **options):
     pairs = [[i, j] for i, j in zip(a.feature_vertices, b.feature_vertices) if i >= 0 and j >= 0]
     try:
         r = native.intersurface_map((a.arrays.vertices, a.arrays.triangles), (b.arrays.vertices, b.arrays.triangles),
-                                    np.array(pairs, dtype=np.int64).reshape(-1, 2), **options)
+                                    np.array(pairs, dtype=np.int64).reshape(-1, 2), corner_images=True, **options)
     except native.InvalidMeshError as e:  # the library calls them A and B
         raise ComputeError(re.sub(r"\b([AB])\b(?=:| has| \()", lambda m: f"'{tasks['AB'.index(m.group(1))].name}'",
                                   str(e))) from e
     stats = [{"genus": r["genus"], "symmetric_dirichlet": float(d), "seconds": r["seconds"], "bijective": True}
              for d in r["symmetric_dirichlet"]]
-    return Outcome([(None, s, None, None) for s in stats], list(names),
-                   pair_maps=[(r["a_to_b_triangle"], r["a_to_b_barycentric"]),
-                              (r["b_to_a_triangle"], r["b_to_a_barycentric"])])
+    pair_maps = []
+    for task, (this, other) in zip(tasks, ("ab", "ba")):
+        loops = meshdata.loop_corners(task.arrays.corners)  # native corner 3 t + k is loop corners[t, k]
+        pair_maps.append((r[f"{this}_to_{other}_triangle"], r[f"{this}_to_{other}_barycentric"],
+                          r[f"{this}_corners_to_{other}_triangle"][loops],
+                          r[f"{this}_corners_to_{other}_barycentric"][loops]))
+    return Outcome([(None, s, None, None) for s in stats], list(names), pair_maps=pair_maps)
 
 
 def apply(tasks, outcome):

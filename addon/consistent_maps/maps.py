@@ -20,6 +20,8 @@ def _object_problem(obj):
         return f"'{obj.name}' has no result: add it to the set and press Compute"
     if results.refinement(obj.data) is None and results.pair_map(obj.data) is None:
         return f"The result of '{obj.name}' predates maps between objects: press Compute again"
+    if results.pair_map(obj.data) is not None and results.pair_corner_map(obj.data) is None:
+        return f"The result of '{obj.name}' predates per-corner maps between objects: press Compute again"
     return None
 
 
@@ -76,16 +78,12 @@ def vertex_landing(source, target):
 def corner_landing(source, target):
     """Where each corner (loop) of target lands on source: from the target corner's own triangle, so
     per-corner source values are taken from the matching side of a seam. Objects mapped directly onto
-    each other (genus >= 1) have images of vertices only: a corner lands where its vertex does."""
-    pair = results.pair_map(target.data)
+    each other (genus >= 1) store these images per corner."""
+    pair = results.pair_corner_map(target.data)
     if pair is not None:
-        corner_vertices = np.empty(len(target.data.loops), dtype=np.int64)
-        target.data.loops.foreach_get("vertex_index", corner_vertices)
-        return mapping.Landing(pair[0][corner_vertices], pair[1][corner_vertices])
+        return mapping.Landing(*pair)
     target_map = parameterization(target)
-    _, corners = meshdata.loop_triangles(target.data)
-    first = np.empty(len(target.data.loops), dtype=np.int64)
-    first[corners.ravel()] = np.arange(corners.size)  # one loop triangle corner for every loop
+    first = meshdata.loop_corners(meshdata.loop_triangles(target.data)[1])
     directions = mapping.corner_directions(target_map).reshape(-1, 3)[first]
     return mapping.land(parameterization(source), directions)
 

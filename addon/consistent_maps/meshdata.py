@@ -17,6 +17,7 @@ class MeshArrays:
     vertices: np.ndarray           # (n, 3) float64, object space
     triangles: np.ndarray          # (m, 3) int32, indices into vertices
     fingerprint: str
+    corners: np.ndarray            # (m, 3) int32, the loop of each triangle corner
 
 
 def fingerprint(mesh):
@@ -44,16 +45,28 @@ def loop_triangles(mesh):
     return vertices.reshape(-1, 3), corners.reshape(-1, 3)
 
 
-def arrays(mesh):
-    """(vertices (n, 3) float64, triangles (m, 3) int32) of the mesh as stored (no Edit Mode sync)."""
+def loop_corners(corners):
+    """Per loop: one loop triangle corner holding it (index 3 t + k), from loop_triangles' corners (every
+    loop is in at least one loop triangle)."""
+    first = np.empty(int(corners.max()) + 1 if corners.size else 0, dtype=np.int64)
+    first[corners.ravel()] = np.arange(corners.size)
+    return first
+
+
+def _positions(mesh):
     co = np.empty(len(mesh.vertices) * 3, dtype=np.float32)
     mesh.vertices.foreach_get("co", co)
-    return co.reshape(-1, 3).astype(np.float64), loop_triangles(mesh)[0]
+    return co.reshape(-1, 3).astype(np.float64)
+
+
+def arrays(mesh):
+    """(vertices (n, 3) float64, triangles (m, 3) int32) of the mesh as stored (no Edit Mode sync)."""
+    return _positions(mesh), loop_triangles(mesh)[0]
 
 
 def extract(obj):
     """MeshArrays of a mesh object, Edit Mode changes included."""
     if obj.mode == 'EDIT':
         obj.update_from_editmode()
-    vertices, triangles = arrays(obj.data)
-    return MeshArrays(vertices, triangles, fingerprint(obj.data))
+    triangles, corners = loop_triangles(obj.data)
+    return MeshArrays(_positions(obj.data), triangles, fingerprint(obj.data), corners)

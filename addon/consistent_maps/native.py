@@ -38,14 +38,17 @@ def consistent_spherical_parameterization(meshes, features, *, effort, seed, thr
         meshes, features, restarts=restarts, effort=effort, seed=seed, threads=threads, progress=progress)
 
 
-def intersurface_map(mesh_a, mesh_b, feature_pairs, *, effort, seed, threads, progress, restarts=1):
+def intersurface_map(mesh_a, mesh_b, feature_pairs, *, effort, seed, threads, progress, restarts=1,
+                     corner_images=False):
     """The map between two closed meshes of equal genus (genus >= 1: through a consistent partition,
     Schreiner et al.), each pair [vertex of A, vertex of B] exactly onto each other: a dict with per vertex
     of A its triangle of B and barycentric weights ('a_to_b_triangle', 'a_to_b_barycentric'), likewise
     'b_to_a_*', and 'genus', 'symmetric_dirichlet' (A to B, B to A), 'seconds'. Genus 0: the least
-    distorted of `restarts` maps."""
+    distorted of `restarts` maps. corner_images: also per triangle corner (row 3 t + k) the image of a
+    point of the triangle next to it ('a_corners_to_b_triangle', 'a_corners_to_b_barycentric',
+    'b_corners_to_a_*'), for per-corner values such as UVs."""
     return _native.intersurface_map(mesh_a, mesh_b, feature_pairs, restarts=restarts, effort=effort, seed=seed,
-                                    threads=threads, progress=progress)
+                                    threads=threads, progress=progress, corner_images=corner_images)
 
 
 def consistent_remesh(surfaces, feature_locations, resolution, *, threads):

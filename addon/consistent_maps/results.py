@@ -13,7 +13,10 @@ scene: the set's token and its feature locations on the sphere, by name.
 
 Two objects of equal genus >= 1 have no sphere: each stores instead, per vertex,
 the triangle of its partner's loop triangles it maps into and the barycentric
-weights there (two point attributes), with the same fingerprint, numbers and token.
+weights there (two point attributes), the same per corner (loop) for a point of
+its face next to the corner (two corner attributes: per-corner values such as
+UVs are taken from the corner's own side of a seam), with the same fingerprint,
+numbers and token.
 """
 import numpy as np
 
@@ -28,6 +31,9 @@ INPUT_VERTEX = "cm_input_vertex_{}"  # three INT point attributes, -1 for an unu
 INPUT_WEIGHTS = "cm_input_weights"
 PAIR_TRIANGLE = "cm_pair_triangle"  # INT point attribute: the partner's loop triangle
 PAIR_WEIGHTS = "cm_pair_weights"    # FLOAT_VECTOR point attribute: barycentric weights in it
+PAIR_CORNER_TRIANGLE = "cm_pair_corner_triangle"  # INT corner attribute: the same for each corner
+PAIR_CORNER_WEIGHTS = "cm_pair_corner_weights"    # FLOAT_VECTOR corner attribute
+PAIR_ATTRIBUTES = (PAIR_TRIANGLE, PAIR_WEIGHTS, PAIR_CORNER_TRIANGLE, PAIR_CORNER_WEIGHTS)
 
 NONE, CURRENT, STALE = "NONE", "CURRENT", "STALE"
 
@@ -97,31 +103,44 @@ def store(mesh, sphere, fingerprint, stats, surface, refinement, token):
     """Stores one member's result; surface = (vertices, triangles, sphere) of its parameterized surface,
     refinement = (input triangle of each surface face, Steiner vertices (s, 3), Steiner weights (s, 3))."""
     _drop_surface(mesh)
-    _remove(mesh, PAIR_TRIANGLE, PAIR_WEIGHTS)
+    _remove(mesh, *PAIR_ATTRIBUTES)
     _write_sphere(mesh, sphere)
     _store_common(mesh, fingerprint, stats, token)
     mesh[SURFACE] = surface_mesh(mesh.name, *surface)
     _write_refinement(mesh[SURFACE], len(sphere), *refinement)
 
 
-def store_pair(mesh, triangle, weights, fingerprint, stats, token):
-    """Stores one object's map onto its partner (genus >= 1): per vertex, the partner's loop triangle and
-    barycentric weights."""
+def store_pair(mesh, triangle, weights, corner_triangle, corner_weights, fingerprint, stats, token):
+    """Stores one object's map onto its partner (genus >= 1): per vertex, then per corner (loop), the
+    partner's loop triangle and barycentric weights."""
     _drop_surface(mesh)
-    _remove(mesh, ATTRIBUTE, PAIR_TRIANGLE, PAIR_WEIGHTS)
+    _remove(mesh, ATTRIBUTE, *PAIR_ATTRIBUTES)
     _write(mesh, PAIR_TRIANGLE, 'INT', 'POINT', "value", np.asarray(triangle, dtype=np.int32))
     _write(mesh, PAIR_WEIGHTS, 'FLOAT_VECTOR', 'POINT', "vector", np.asarray(weights, dtype=np.float32))
+    _write(mesh, PAIR_CORNER_TRIANGLE, 'INT', 'CORNER', "value", np.asarray(corner_triangle, dtype=np.int32))
+    _write(mesh, PAIR_CORNER_WEIGHTS, 'FLOAT_VECTOR', 'CORNER', "vector",
+           np.asarray(corner_weights, dtype=np.float32))
     _store_common(mesh, fingerprint, stats, token)
 
 
-def pair_map(mesh):
-    """(triangle (n,), weights (n, 3)) of a mesh mapped directly onto its partner, or None."""
-    triangle = _read(mesh.attributes, PAIR_TRIANGLE, "value", np.int32, 1)
-    weights = _read(mesh.attributes, PAIR_WEIGHTS, "vector", np.float32, 3)
+def _pair_points(mesh, triangle_name, weights_name):
+    triangle = _read(mesh.attributes, triangle_name, "value", np.int32, 1)
+    weights = _read(mesh.attributes, weights_name, "vector", np.float32, 3)
     if triangle is None or weights is None:
         return None
     weights = weights.astype(np.float64)
     return triangle, weights / weights.sum(axis=1, keepdims=True)
+
+
+def pair_map(mesh):
+    """(triangle (n,), weights (n, 3)) of a mesh mapped directly onto its partner, or None."""
+    return _pair_points(mesh, PAIR_TRIANGLE, PAIR_WEIGHTS)
+
+
+def pair_corner_map(mesh):
+    """(triangle (loops,), weights (loops, 3)): where a point of each corner's face next to it lands on the
+    partner, for a mesh mapped directly onto it; None otherwise (or for a result stored before these)."""
+    return _pair_points(mesh, PAIR_CORNER_TRIANGLE, PAIR_CORNER_WEIGHTS)
 
 
 def store_set(scene, token, names, locations):

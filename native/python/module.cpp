@@ -528,9 +528,10 @@ std::pair<py::array_t<std::int32_t>, py::array_t<double>> to_numpy(const std::ve
 }
 
 py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, const py::handle& pairs_data, int grid,
-                          int optimize, int restarts, std::uint64_t seed, int effort, int threads,
+                          int optimize, int restarts, bool corner_images, std::uint64_t seed, int effort, int threads,
                           const py::object& progress) {
   cmaps::IntersurfaceOptions options;
+  options.corner_images = corner_images;
   if (optimize < 0) raise(PyExc_ValueError, "optimize must be at least 0, got " + std::to_string(optimize));
   if (restarts < 1) raise(PyExc_ValueError, "restarts must be at least 1, got " + std::to_string(restarts));
   options.restarts = restarts;
@@ -552,6 +553,14 @@ py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, co
   d["a_to_b_barycentric"] = ab_barycentric;
   d["b_to_a_triangle"] = ba_triangle;
   d["b_to_a_barycentric"] = ba_barycentric;
+  if (corner_images) {
+    const auto [ab_corner_triangle, ab_corner_barycentric] = to_numpy(result.a_corners_to_b);
+    const auto [ba_corner_triangle, ba_corner_barycentric] = to_numpy(result.b_corners_to_a);
+    d["a_corners_to_b_triangle"] = ab_corner_triangle;
+    d["a_corners_to_b_barycentric"] = ab_corner_barycentric;
+    d["b_corners_to_a_triangle"] = ba_corner_triangle;
+    d["b_corners_to_a_barycentric"] = ba_corner_barycentric;
+  }
   d["a_on_b"] = to_numpy(result.a_on_b);
   d["b_on_a"] = to_numpy(result.b_on_a);
   py::array_t<std::int32_t> features({py::ssize_t(result.features.size()), py::ssize_t(2)});
@@ -965,7 +974,7 @@ PYBIND11_MODULE(_native, m) {
         "like constrained_spherical_parameterization.");
   m.def("intersurface_map", &intersurface_map, py::arg("mesh_a"), py::arg("mesh_b"),
         py::arg("feature_pairs") = py::list(), py::kw_only(), py::arg("grid") = 64, py::arg("optimize") = 2,
-        py::arg("restarts") = 1, py::arg("seed") = 1,
+        py::arg("restarts") = 1, py::arg("corner_images") = false, py::arg("seed") = 1,
         py::arg("effort") = 1, py::arg("threads") = 2, py::arg("progress") = py::none(),
         "Inter-surface map between two closed meshes of equal genus (genus 0: through a consistent spherical\n"
         "parameterization of both; genus >= 1: through a consistent partition into triangular patches,\n"
@@ -973,7 +982,11 @@ PYBIND11_MODULE(_native, m) {
         "[vertex of A, vertex of B], mapped exactly onto each other (fewer than 3: pairs are added\n"
         "automatically up to 4). Returns a dict: 'a_to_b_triangle' (nA,) int32 and 'a_to_b_barycentric'\n"
         "(nA, 3): each vertex of A on an input triangle of B with weights w.r.t. its corners; likewise\n"
-        "'b_to_a_*'; 'a_on_b' (nA, 3), 'b_on_a' (nB, 3) the mapped positions; 'features' (k', 2) the pairs\n"
+        "'b_to_a_*'; with corner_images, also 'a_corners_to_b_triangle' (3 mA,) int32 and\n"
+        "'a_corners_to_b_barycentric' (3 mA, 3): row 3 t + k, the image on B of the point of A's triangle t\n"
+        "next to its corner k (1e-3 of the way towards the other two), so per-corner values (UVs) are taken\n"
+        "from the corner's own side of a seam; likewise 'b_corners_to_a_*' (3 mB rows);\n"
+        "'a_on_b' (nA, 3), 'b_on_a' (nB, 3) the mapped positions; 'features' (k', 2) the pairs\n"
         "used (given, then added), 'added_features'; per direction (A to B, B to A) 'symmetric_dirichlet'\n"
         "(area-normalized, optimum 4, each source triangle mapped linearly onto its corners' images),\n"
         "'flipped', 'degenerate', and 'composition_dirichlet' before the distortion optimization (optimize:\n"

@@ -40,16 +40,18 @@ def _get(collection, field, width, dtype=np.float32):
     return values.reshape(-1, width) if width > 1 else values
 
 
-def _cylinder_uv(mesh):
-    """Per-corner UVs around the vertical axis (triangles only), with a seam: the corners of a face
-    across it get u + 1, so the same vertex has two UVs there."""
+def _cylinder_uv(mesh, axis=2):
+    """Per-corner UVs around the coordinate axis `axis` (default vertical; triangles only): u the angle, v
+    along the axis, with a seam: the corners of a face across it get u + 1, so the same vertex has two UVs
+    there."""
+    x, y = (i for i in range(3) if i != axis)
     co = maps.positions(mesh)
     centre = (co.min(axis=0) + co.max(axis=0)) / 2
     loops = _get(mesh.loops, "vertex_index", 1, np.int32)
-    u = (np.arctan2(co[:, 1] - centre[1], co[:, 0] - centre[0]) / (2 * np.pi) + 0.5)[loops].reshape(-1, 3)
+    u = (np.arctan2(co[:, y] - centre[y], co[:, x] - centre[x]) / (2 * np.pi) + 0.5)[loops].reshape(-1, 3)
     wraps = (u.max(axis=1) - u.min(axis=1) > 0.5)[:, None] & (u < 0.5)
     u = np.where(wraps, u + 1, u)
-    return np.column_stack([u.ravel(), co[loops, 2]])
+    return np.column_stack([u.ravel(), co[loops, axis]])
 
 
 def _new_uv(mesh, name, uv):

@@ -2,6 +2,7 @@
 #pragma once
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <vector>
 
 #include "consistent_maps/intersurface_map.h"
@@ -33,6 +34,26 @@ inline void expect_exact_features(const IntersurfaceResult& r, const TriangleMes
     EXPECT_EQ(r.a_on_b[f.a], b.vertices[f.b]);
     EXPECT_EQ(r.b_on_a[f.b], a.vertices[f.a]);
   }
+}
+
+// The point of `mesh`'s triangle t next to its corner k, as corner images
+// take it: kCornerNudge of the way from the corner towards the other two.
+inline Vec3 nudged_corner(const TriangleMesh& mesh, int t, int k) {
+  const Triangle& c = mesh.triangles[t];
+  return (1 - 2 * kCornerNudge) * mesh.vertices[c[k]] +
+         kCornerNudge * (mesh.vertices[c[(k + 1) % 3]] + mesh.vertices[c[(k + 2) % 3]]);
+}
+
+// Largest distance between a corner's image and its vertex's image
+// (`vertex_images`, positions on the target), relative to `scale`: a corner
+// image lands next to its vertex's, on whichever side of a seam.
+inline double corner_offset(const std::vector<SurfacePoint>& corners, const TriangleMesh& source,
+                            const TriangleMesh& target, const std::vector<Vec3>& vertex_images, double scale) {
+  const std::vector<Vec3> at = surface_positions(target, corners);
+  double worst = 0;
+  for (std::size_t i = 0; i < at.size(); ++i)
+    worst = std::max(worst, (at[i] - vertex_images[source.triangles[i / 3][i % 3]]).norm());
+  return worst / scale;
 }
 
 }  // namespace cmaps::test

@@ -18,9 +18,12 @@
 namespace cmaps {
 namespace {
 
+using test::corner_offset;
 using test::diagonal;
 using test::expect_exact_features;
 using test::expect_valid_points;
+using test::farthest_points;
+using test::nudged_corner;
 using test::shared_mesh;
 
 struct Pair {
@@ -191,7 +194,7 @@ TEST(HigherGenusMap, StretchedCopyMatchesItsHandles) {
   for (const auto& [count, tolerance] : {std::pair{0, 0.1}, {16, 0.04}}) {
     std::vector<FeaturePair> pairs;
     if (count > 0)
-      for (int v : test::farthest_points(a, count)) pairs.push_back({v, new_index[v]});
+      for (int v : farthest_points(a, count)) pairs.push_back({v, new_index[v]});
     const IntersurfaceResult r = intersurface_map(a, b, pairs);
     double error = 0;
     for (int v = 0; v < n; ++v) error += (r.a_on_b[v] - b.vertices[new_index[v]]).norm();
@@ -199,6 +202,69 @@ TEST(HigherGenusMap, StretchedCopyMatchesItsHandles) {
     std::printf("  %d pairs: mean error %.2f %% of the diagonal\n", count, 100 * error);
     EXPECT_LT(error, tolerance) << count << " pairs";
   }
+}
+
+// Corner images, both ways, of a copy with its vertices reordered, its
+// triangles turned the other way and a stray vertex no triangle uses: the
+// map is the identity, so each corner's image is its own point next to it,
+// in the same triangle.
+TEST(HigherGenusMap, CornerImagesOfAReversedCopyAreTheirOwnPoints) {
+  const TriangleMesh a = read_mesh(shared_mesh("higher-genus/torus.obj"));
+  const int n = int(a.vertices.size());
+  const auto moved = [n](int v) { return int((std::int64_t(v) * 7919 + 13) % n); };
+  TriangleMesh b;
+  b.vertices.resize(n);
+  for (int v = 0; v < n; ++v) b.vertices[moved(v)] = a.vertices[v];
+  for (const Triangle& t : a.triangles) b.triangles.push_back({moved(t[0]), moved(t[2]), moved(t[1])});
+  b.vertices.push_back(Vec3(9, 9, 9));
+  IntersurfaceOptions options;
+  options.corner_images = true;
+  const IntersurfaceResult r = intersurface_map(a, b, {}, options);
+  const int triangles = int(a.triangles.size());
+  ASSERT_EQ(r.a_corners_to_b.size(), 3u * triangles);
+  ASSERT_EQ(r.b_corners_to_a.size(), 3u * triangles);
+  expect_valid_points(r.a_corners_to_b, b);
+  expect_valid_points(r.b_corners_to_a, a);
+  const std::vector<Vec3> on_b = surface_positions(b, r.a_corners_to_b), on_a = surface_positions(a, r.b_corners_to_a);
+  for (int t = 0; t < triangles; ++t)
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(r.a_corners_to_b[3 * t + k].triangle, t);
+      EXPECT_EQ(r.b_corners_to_a[3 * t + k].triangle, t);
+      EXPECT_LT((on_b[3 * t + k] - nudged_corner(a, t, k)).norm(), 1e-9 * diagonal(a));
+      EXPECT_LT((on_a[3 * t + k] - nudged_corner(b, t, k)).norm(), 1e-9 * diagonal(a));
+    }
+}
+
+// A stretched copy of the torus with 16 identical vertex pairs: each
+// corner's image lies next to its vertex's image, and near the corner's own
+// point on the copy (the same weights in the same triangle) as closely as
+// the vertices' images lie to their own.
+TEST(HigherGenusMap, CornerImagesOfAStretchedCopyLandNextToTheirCorners) {
+  const TriangleMesh a = read_mesh(shared_mesh("higher-genus/torus.obj"));
+  TriangleMesh b = a;
+  for (Vec3& p : b.vertices) p = p.cwiseProduct(Vec3(1.5, 1.0, 0.7));
+  std::vector<FeaturePair> pairs;
+  for (int v : farthest_points(a, 16)) pairs.push_back({v, v});
+  IntersurfaceOptions options;
+  options.corner_images = true;
+  const IntersurfaceResult r = intersurface_map(a, b, pairs, options);
+  expect_valid_points(r.a_corners_to_b, b);
+  expect_valid_points(r.b_corners_to_a, a);
+  const double ab = corner_offset(r.a_corners_to_b, a, b, r.a_on_b, diagonal(b));
+  const double ba = corner_offset(r.b_corners_to_a, b, a, r.b_on_a, diagonal(a));
+  double vertices = 0, corners = 0;
+  for (std::size_t v = 0; v < a.vertices.size(); ++v) vertices += (r.a_on_b[v] - b.vertices[v]).norm();
+  const std::vector<Vec3> on_b = surface_positions(b, r.a_corners_to_b);
+  for (int t = 0; t < int(a.triangles.size()); ++t)
+    for (int k = 0; k < 3; ++k) corners += (on_b[3 * t + k] - nudged_corner(b, t, k)).norm();
+  vertices /= double(a.vertices.size()) * diagonal(b);
+  corners /= 3.0 * double(a.triangles.size()) * diagonal(b);
+  std::printf("stretched torus: corner images at most %.5f / %.5f of the diagonal from their vertices' images; "
+              "mean error %.4f (corners), %.4f (vertices)\n", ab, ba, corners, vertices);
+  EXPECT_LT(ab, 0.005);
+  EXPECT_LT(ba, 0.005);
+  EXPECT_LT(corners, 0.05);
+  EXPECT_LT(corners, vertices + 0.005);
 }
 
 INSTANTIATE_TEST_SUITE_P(Pairs, HigherGenusPartition, ::testing::ValuesIn(kPairs));

@@ -26,13 +26,22 @@ def diagonal(vertices):
 def cat_lion(native):
     cat, lion = native.read_mesh(str(CAT)), native.read_mesh(str(LION))
     landmarks = np.loadtxt(CAT_LION / "landmarks.txt", dtype=np.int64)
-    result = native.intersurface_map(cat, lion, landmarks, effort=0)
+    result = native.intersurface_map(cat, lion, landmarks, effort=0, corner_images=True)
     return cat, lion, landmarks, result
 
 
 def expect_valid(triangles, barycentric, target_triangles):
     assert triangles.dtype == np.int32 and triangles.min() >= 0 and triangles.max() < len(target_triangles)
     assert barycentric.min() >= 0 and np.allclose(barycentric.sum(axis=1), 1, atol=1e-12)
+
+
+def expect_valid_corners(result, a, b):
+    """Corner images both ways: one per triangle corner of the source, each on a triangle of the other."""
+    for this, other, source, target in (("a", "b", a, b), ("b", "a", b, a)):
+        triangle = result[f"{this}_corners_to_{other}_triangle"]
+        barycentric = result[f"{this}_corners_to_{other}_barycentric"]
+        assert triangle.shape == (3 * len(source[1]),) and barycentric.shape == (3 * len(source[1]), 3)
+        expect_valid(triangle, barycentric, target[1])
 
 
 def expect_exact(result, a, b):
@@ -54,6 +63,7 @@ def test_cat_lion_landmarks_exact(cat_lion):
     expect_valid(r["a_to_b_triangle"], r["a_to_b_barycentric"], lion[1])
     expect_valid(r["b_to_a_triangle"], r["b_to_a_barycentric"], cat[1])
     expect_exact(r, cat, lion)
+    expect_valid_corners(r, cat, lion)
     assert r["sphere_flipped"] == 0
     assert all(np.isfinite(e) and e >= 4 - 1e-9 for e in r["symmetric_dirichlet"])
     assert r["seconds"] >= r["seconds_parameterize"] > 0
@@ -79,6 +89,7 @@ def test_zero_features_get_a_valid_map(native):
     a, b = native.read_mesh(str(SPOT)), native.read_mesh(str(SPHERE))
     r = native.intersurface_map(a, b, [], effort=0)
     assert r["added_features"] == 4 and r["features"].shape == (4, 2)
+    assert "a_corners_to_b_triangle" not in r  # only asked for with corner_images
     expect_valid(r["a_to_b_triangle"], r["a_to_b_barycentric"], b[1])
     expect_valid(r["b_to_a_triangle"], r["b_to_a_barycentric"], a[1])
     expect_exact(r, a, b)
@@ -138,8 +149,9 @@ def test_faces_with_holes(native):
 
 def test_genus_one_map(native):
     a, b = native.read_mesh(str(TORUS)), native.read_mesh(str(KNOT))
-    r = native.intersurface_map(a, b, [[0, 7]])
+    r = native.intersurface_map(a, b, [[0, 7]], corner_images=True)
     assert r["genus"] == 1 and r["features"][0].tolist() == [0, 7]
+    expect_valid_corners(r, a, b)
     assert r["base_triangles"] > 0 and r["base_vertices"] - r["base_triangles"] // 2 == 0  # V - E + F = 0
     expect_valid(r["a_to_b_triangle"], r["a_to_b_barycentric"], b[1])
     expect_valid(r["b_to_a_triangle"], r["b_to_a_barycentric"], a[1])

@@ -84,11 +84,15 @@ struct IntersurfaceOptions {
   // (sets/cactus 0 -> 3, 8 features: ground-truth error 2.2-7.9 % over six
   // starts), and the energy ranks the maps nearly like the true error does.
   int restarts = 1;
-  // Also map every triangle corner of A (IntersurfaceResult::a_corners_to_b),
-  // for transferring per-corner values such as texture coordinates (genus 0
-  // only for now: InvalidInput otherwise).
+  // Also map every triangle corner of A and of B (IntersurfaceResult::
+  // a_corners_to_b, b_corners_to_a), for transferring per-corner values such
+  // as texture coordinates.
   bool corner_images = false;
 };
+
+// How far the point of a triangle next to a corner (corner images) lies
+// from it: this fraction of the way to each of the other two corners.
+constexpr double kCornerNudge = 1e-3;
 
 // Distortion of the map sampled at the vertices: each triangle of the source
 // is mapped linearly onto the triangle its corners' images form on the
@@ -111,10 +115,12 @@ struct IntersurfaceResult {
   std::vector<SurfacePoint> b_to_a;  // per vertex of B: its image on A
   // With options.corner_images: per triangle of A, per corner (3 t + k), the
   // image on B of the point of that triangle next to the corner (moved into
-  // it by 1e-3 of the way to the other corners, on A's map). Corners of one
-  // vertex in triangles on both sides of a seam of B's per-corner values thus
-  // land on their own side of it.
+  // it by kCornerNudge of the way to the other corners: genus 0 on A's
+  // spherical map, genus >= 1 in A's input triangle). Corners of one vertex
+  // in triangles on both sides of a seam of B's per-corner values thus land
+  // on their own side of it. b_corners_to_a: likewise B's corners on A.
   std::vector<SurfacePoint> a_corners_to_b;
+  std::vector<SurfacePoint> b_corners_to_a;
   std::vector<Vec3> a_on_b;          // per vertex of A: the position of its image on B
   std::vector<Vec3> b_on_a;          // per vertex of B: the position of its image on A
   MapDistortion distortion_a_to_b, distortion_b_to_a;

@@ -237,8 +237,6 @@ std::vector<SurfacePoint> map_through_sphere(const std::vector<Vec3>& source_sph
 // refined triangle of that input triangle incident to the corner (the map is
 // linear there); without one (zero-area input triangles), between the input
 // corners' own directions.
-constexpr double kCornerNudge = 1e-3;
-
 std::vector<Vec3> corner_directions(const TriangleMesh& mesh, const ConstrainedResult& map) {
   const ParameterizedSurface surface = parameterized_surface(mesh, map);
   const std::vector<Vec3>& sphere = surface.sphere;
@@ -346,8 +344,13 @@ void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, Intersurf
     for (std::size_t i = 0; i < located.size(); ++i) points[i] = {located[i].triangle, located[i].barycentric};
     return points;
   };
-  result.a_to_b = convert(map_vertices(partition.sides[0], uv_a, partition.sides[1], uv_b, b, threads));
-  result.b_to_a = convert(map_vertices(partition.sides[1], uv_b, partition.sides[0], uv_a, a, threads));
+  const PartitionSide &side_a = partition.sides[0], &side_b = partition.sides[1];
+  result.a_to_b = convert(map_vertices(side_a, uv_a, side_b, uv_b, b, threads));
+  result.b_to_a = convert(map_vertices(side_b, uv_b, side_a, uv_a, a, threads));
+  if (options.corner_images) {
+    result.a_corners_to_b = convert(map_corners(side_a, uv_a, side_b, uv_b, a, b, threads));
+    result.b_corners_to_a = convert(map_corners(side_b, uv_b, side_a, uv_a, b, a, threads));
+  }
   result.a_on_b = surface_positions(b, result.a_to_b);
   result.b_on_a = surface_positions(a, result.b_to_a);
   result.seconds_locate = seconds_since(stage);
@@ -476,7 +479,10 @@ void map_through_sphere_pair(const TriangleMesh& a, const TriangleMesh& b, const
   stage = Clock::now();
   if (progress && !progress(0.95, "locating vertices on the other mesh")) throw Cancelled();
   compose();
-  if (options.corner_images) result.a_corners_to_b = map_through_sphere(corner_directions(a, map_a), b, map_b, {}, threads);
+  if (options.corner_images) {
+    result.a_corners_to_b = map_through_sphere(corner_directions(a, map_a), b, map_b, {}, threads);
+    result.b_corners_to_a = map_through_sphere(corner_directions(b, map_b), a, map_a, {}, threads);
+  }
   result.a_on_b = surface_positions(b, result.a_to_b);
   result.b_on_a = surface_positions(a, result.b_to_a);
   result.seconds_locate = seconds_since(stage);
@@ -574,6 +580,7 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
     expand(used_a, int(a.vertices.size()), r.a_on_b);
     expand(used_b, int(b.vertices.size()), r.b_to_a);
     expand(used_b, int(b.vertices.size()), r.b_on_a);
+    // Corner images need nothing: the triangles, their order and corners are kept.
     const auto original = [](const std::optional<UsedVertices>& u, int v) {
       return u ? int(std::find(u->to_used.begin(), u->to_used.end(), v) - u->to_used.begin()) : v;
     };
@@ -590,10 +597,6 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
   result.genus = genus_a;
   result.features = features;
   if (genus_a > 0) {
-    if (options.corner_images)
-      throw InvalidInput("A and B have genus " + std::to_string(genus_a) +
-                         ": images of triangle corners (per-corner values such as texture coordinates) are only "
-                         "mapped for genus 0 so far");
     map_through_patches(a, b, result, options, progress);
     const auto stage = Clock::now();
     result.distortion_a_to_b = result.composition_a_to_b = measure_intersurface_map(a, b, result.a_to_b);

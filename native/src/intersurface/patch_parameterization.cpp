@@ -8,6 +8,7 @@
 
 #include "common/parallel_for.h"
 #include "consistent_maps/errors.h"
+#include "consistent_maps/intersurface_map.h"
 #include "intersurface/patch_locator.h"
 
 namespace cmaps {
@@ -136,6 +137,24 @@ std::vector<std::vector<int>> faces_by_patch(const PartitionSide& side, int patc
   return faces;
 }
 
+// Canonical points (base triangle, point in its canonical triangle) located
+// in `target`'s patches, on `target_input`'s triangles.
+std::vector<InputLocation> locate_canonical(const PartitionSide& target, const PatchParameterization& target_uv,
+                                            const TriangleMesh& target_input,
+                                            const std::vector<std::pair<int, Vec2>>& points, int threads) {
+  const int patches = int(target_uv.uv.size());
+  const std::vector<std::vector<int>> faces = faces_by_patch(target, patches);
+  std::vector<PatchLocator> locators;
+  locators.reserve(patches);
+  for (int t = 0; t < patches; ++t) locators.emplace_back(target, target_uv.uv[t], faces[t]);
+  std::vector<InputLocation> image(points.size());
+  parallel_for(int(points.size()), threads, [&](int i) {
+    const auto [face, w] = locators[points[i].first].locate(points[i].second);
+    image[i] = to_input(target, target_input, face, w);
+  });
+  return image;
+}
+
 }  // namespace
 
 PatchParameterization parameterize_patches(PartitionSide& side, const ConsistentPartition& partition) {
@@ -151,19 +170,13 @@ PatchParameterization parameterize_patches(PartitionSide& side, const Consistent
 std::vector<InputLocation> map_vertices(const PartitionSide& source, const PatchParameterization& source_uv,
                                         const PartitionSide& target, const PatchParameterization& target_uv,
                                         const TriangleMesh& target_input, int threads) {
-  const int patches = int(target_uv.uv.size());
-  const std::vector<std::vector<int>> faces = faces_by_patch(target, patches);
-  std::vector<PatchLocator> locators;
-  locators.reserve(patches);
-  for (int t = 0; t < patches; ++t) locators.emplace_back(target, target_uv.uv[t], faces[t]);
-
   const int n = source.mesh.input_vertex_count();
-  std::vector<InputLocation> image(n);
-  parallel_for(n, threads, [&](int v) {
+  std::vector<std::pair<int, Vec2>> points(n);
+  for (int v = 0; v < n; ++v) {
     const int t = source.patch[source.mesh.faces_of(v).front()];
-    const auto [face, w] = locators[t].locate(source_uv.uv[t].at(v));
-    image[v] = to_input(target, target_input, face, w);
-  });
+    points[v] = {t, source_uv.uv[t].at(v)};
+  }
+  std::vector<InputLocation> image = locate_canonical(target, target_uv, target_input, points, threads);
 
   // Features exactly onto their partners.
   std::vector<int> incident(target_input.vertices.size(), -1);
@@ -178,6 +191,40 @@ std::vector<InputLocation> map_vertices(const PartitionSide& source, const Patch
     for (int j = 0; j < 3; ++j) p.barycentric[j] = target_input.triangles[p.triangle][j] == to ? 1 : 0;
   }
   return image;
+}
+
+std::vector<InputLocation> map_corners(const PartitionSide& source, const PatchParameterization& source_uv,
+                                       const PartitionSide& target, const PatchParameterization& target_uv,
+                                       const TriangleMesh& source_input, const TriangleMesh& target_input,
+                                       int threads) {
+  const int triangles = int(source_input.triangles.size());
+  std::vector<std::vector<int>> refined(triangles);  // per input triangle: the refined faces inside it
+  for (int f = 0; f < int(source.mesh.triangles().size()); ++f) refined[source.mesh.input_triangle(f)].push_back(f);
+  std::vector<std::pair<int, Vec2>> points(3 * std::size_t(triangles));
+  parallel_for(triangles, threads, [&](int t) {
+    // t's refined faces in an affine chart of t: a point's weights on t's corners 1 and 2.
+    const Triangle& corners = source_input.triangles[t];
+    std::unordered_map<int, Vec2> chart;
+    for (int f : refined[t])
+      for (int v : source.mesh.triangles()[f]) {
+        const InputPoint& origin = source.mesh.surface_point(v);
+        Vec2& q = chart[v] = Vec2::Zero();
+        for (int j = 0; j < 3; ++j)
+          for (int k = 1; k < 3; ++k)
+            if (origin.vertices[j] == corners[k]) q[k - 1] += origin.weights[j];
+      }
+    const PatchLocator locator(source, chart, refined[t]);
+    for (int k = 0; k < 3; ++k) {
+      Vec2 p = Vec2::Constant(kCornerNudge);
+      if (k > 0) p[k - 1] = 1 - 2 * kCornerNudge;
+      const auto [face, w] = locator.locate(p);
+      const int patch = source.patch[face];
+      Vec2 uv = Vec2::Zero();
+      for (int j = 0; j < 3; ++j) uv += w[j] * source_uv.uv[patch].at(source.mesh.triangles()[face][j]);
+      points[3 * std::size_t(t) + k] = {patch, uv};
+    }
+  });
+  return locate_canonical(target, target_uv, target_input, points, threads);
 }
 
 }  // namespace cmaps

@@ -40,4 +40,13 @@ std::vector<InputLocation> map_vertices(const PartitionSide& source, const Patch
                                         const PartitionSide& target, const PatchParameterization& target_uv,
                                         const TriangleMesh& target_input, int threads);
 
+// Per corner k of input triangle t of `source_input` (entry 3 t + k): the
+// image on `target_input` of the point of t next to that corner (input
+// barycentric 1 - 2 kCornerNudge there, kCornerNudge at the other two), for
+// per-corner values. That point is no feature: it is mapped as it lands.
+std::vector<InputLocation> map_corners(const PartitionSide& source, const PatchParameterization& source_uv,
+                                       const PartitionSide& target, const PatchParameterization& target_uv,
+                                       const TriangleMesh& source_input, const TriangleMesh& target_input,
+                                       int threads);
+
 }  // namespace cmaps
