@@ -455,10 +455,87 @@ class Partitioner {
     throw Error("could not join two boundaries of the cut surface by corresponding paths");
   }
 
+  // The shortest non-separating cycle that tree-cotree finds from `root` on
+  // side s (steps weighted by `factor` when given); empty when none.
+  std::vector<int> tree_cotree_cycle(const Side& side, int root, const Side::StepFactor* factor) const {
+    std::vector<int> parent;
+    std::vector<double> dist;
+    side.dijkstra({root}, nullptr, dist, parent, factor);
+    const int edges = side.mesh.edge_count();
+    std::vector<char> tree(edges, 0), cotree(edges, 0);
+    for (int v = 0; v < side.mesh.vertex_count(); ++v)
+      if (parent[v] >= 0) tree[side.mesh.edge(v, parent[v])] = 1;
+    // Cotree: a spanning tree of the faces across non-path, non-tree
+    // edges, those with a path vertex first, so that as few edges between
+    // free vertices as possible are used up (Kruskal with weights 0 / 1).
+    const int faces = int(side.mesh.triangles().size());
+    std::vector<int> group(faces);
+    std::iota(group.begin(), group.end(), 0);
+    const std::function<int(int)> find = [&](int x) {
+      while (group[x] != x) x = group[x] = group[group[x]];
+      return x;
+    };
+    for (int interior = 0; interior < 2; ++interior)
+      for (int e = 0; e < edges; ++e) {
+        const auto [u, w] = side.mesh.edge_vertices(e);
+        if (u < 0 || tree[e] || side.path_edges.count(e)) continue;
+        if ((!side.blocked[u] && !side.blocked[w]) != bool(interior)) continue;
+        const auto& two = side.mesh.edge_faces(e);
+        const int x = find(two[0]), y = find(two[1]);
+        if (x != y) {
+          group[x] = y;
+          cotree[e] = 1;
+        }
+      }
+    std::vector<int> depth(side.mesh.vertex_count(), -1);
+    const auto depth_of = [&](int v) {
+      std::vector<int> chain;
+      for (int u = v; depth[u] < 0; u = parent[u]) {
+        chain.push_back(u);
+        if (parent[u] < 0) {
+          depth[u] = 0;
+          chain.pop_back();
+          break;
+        }
+      }
+      for (auto it = chain.rbegin(); it != chain.rend(); ++it) depth[*it] = depth[parent[*it]] + 1;
+      return depth[v];
+    };
+    const auto lca = [&](int u, int w) {
+      while (depth_of(u) > depth_of(w)) u = parent[u];
+      while (depth_of(w) > depth_of(u)) w = parent[w];
+      while (u != w) u = parent[u], w = parent[w];
+      return u;
+    };
+    double best = kInf;
+    int bu = -1, bw = -1;
+    for (int e = 0; e < edges; ++e) {
+      const auto [u, w] = side.mesh.edge_vertices(e);
+      if (u < 0 || tree[e] || cotree[e] || side.path_edges.count(e) || side.blocked[u] || side.blocked[w]) continue;
+      if (!std::isfinite(dist[u]) || !std::isfinite(dist[w])) continue;
+      const double length =
+          dist[u] + dist[w] + side.step(u, w, factor) - 2 * dist[lca(u, w)];
+      if (length < best) best = length, bu = u, bw = w;
+    }
+    if (bu >= 0) {
+      const int apex = lca(bu, bw);
+      std::vector<int> cycle, back;
+      for (int v = bu; v != apex; v = parent[v]) cycle.push_back(v);
+      cycle.push_back(apex);
+      std::reverse(cycle.begin(), cycle.end());
+      for (int v = bw; v != apex; v = parent[v]) back.push_back(v);
+      cycle.insert(cycle.end(), back.begin(), back.end());
+      cycle.push_back(apex);
+      return cycle;
+    }
+    return {};
+  }
+
   // The shortest non-separating cycle found by tree-cotree in the single
   // region of side s: a vertex list from its apex back to it. On B, `on_a`
-  // is A's cycle: the tree grows from the vertex nearest its apex and
-  // lengths are weighted by the distance from it (path_guide.h).
+  // is A's cycle: a second cycle is found from the vertex nearest its apex
+  // with lengths weighted by the distance from it (path_guide.h), and the
+  // one nearer A's is kept (a copy of A keeps A's own cycle).
   std::vector<int> nonseparating_cycle(int s, const std::vector<Vec3>& on_a = {}) {
     for (int attempt = 0; attempt < 2; ++attempt) {
       Side& side = sides_[s];
@@ -475,83 +552,21 @@ class Partitioner {
           free.push_back(v);
           if (root < 0 || far[v] > far[root]) root = v;
         }
-      Side::StepFactor near_a;
-      if (!on_a.empty() && root >= 0) {
-        std::vector<Vec3> positions;
-        for (int v : free) positions.push_back(side.mesh.position(v));
-        root = free[guide_.nearest(on_a.front(), positions)];
-        near_a = guide_.near(on_a);
-      }
       if (root >= 0) {
-        std::vector<double> dist;
-        side.dijkstra({root}, nullptr, dist, parent, on_a.empty() ? nullptr : &near_a);
-        const int edges = side.mesh.edge_count();
-        std::vector<char> tree(edges, 0), cotree(edges, 0);
-        for (int v = 0; v < side.mesh.vertex_count(); ++v)
-          if (parent[v] >= 0) tree[side.mesh.edge(v, parent[v])] = 1;
-        // Cotree: a spanning tree of the faces across non-path, non-tree
-        // edges, those with a path vertex first, so that as few edges between
-        // free vertices as possible are used up (Kruskal with weights 0 / 1).
-        const int faces = int(side.mesh.triangles().size());
-        std::vector<int> group(faces);
-        std::iota(group.begin(), group.end(), 0);
-        const std::function<int(int)> find = [&](int x) {
-          while (group[x] != x) x = group[x] = group[group[x]];
-          return x;
-        };
-        for (int interior = 0; interior < 2; ++interior)
-          for (int e = 0; e < edges; ++e) {
-            const auto [u, w] = side.mesh.edge_vertices(e);
-            if (u < 0 || tree[e] || side.path_edges.count(e)) continue;
-            if ((!side.blocked[u] && !side.blocked[w]) != bool(interior)) continue;
-            const auto& two = side.mesh.edge_faces(e);
-            const int x = find(two[0]), y = find(two[1]);
-            if (x != y) {
-              group[x] = y;
-              cotree[e] = 1;
-            }
-          }
-        std::vector<int> depth(side.mesh.vertex_count(), -1);
-        const auto depth_of = [&](int v) {
-          std::vector<int> chain;
-          for (int u = v; depth[u] < 0; u = parent[u]) {
-            chain.push_back(u);
-            if (parent[u] < 0) {
-              depth[u] = 0;
-              chain.pop_back();
-              break;
-            }
-          }
-          for (auto it = chain.rbegin(); it != chain.rend(); ++it) depth[*it] = depth[parent[*it]] + 1;
-          return depth[v];
-        };
-        const auto lca = [&](int u, int w) {
-          while (depth_of(u) > depth_of(w)) u = parent[u];
-          while (depth_of(w) > depth_of(u)) w = parent[w];
-          while (u != w) u = parent[u], w = parent[w];
-          return u;
-        };
-        double best = kInf;
-        int bu = -1, bw = -1;
-        for (int e = 0; e < edges; ++e) {
-          const auto [u, w] = side.mesh.edge_vertices(e);
-          if (u < 0 || tree[e] || cotree[e] || side.path_edges.count(e) || side.blocked[u] || side.blocked[w]) continue;
-          if (!std::isfinite(dist[u]) || !std::isfinite(dist[w])) continue;
-          const double length =
-              dist[u] + dist[w] + side.step(u, w, on_a.empty() ? nullptr : &near_a) - 2 * dist[lca(u, w)];
-          if (length < best) best = length, bu = u, bw = w;
+        std::vector<int> cycle = tree_cotree_cycle(side, root, nullptr);
+        if (!on_a.empty()) {
+          const Side::StepFactor near_a = guide_.near(on_a);
+          std::vector<Vec3> positions;
+          for (int v : free) positions.push_back(side.mesh.position(v));
+          std::vector<int> guided = tree_cotree_cycle(side, free[guide_.nearest(on_a.front(), positions)], &near_a);
+          const auto remoteness = [&](const std::vector<int>& c) {
+            double sum = 0;
+            for (int v : c) sum += near_a(side.mesh.position(v));
+            return c.empty() ? kInf : sum / double(c.size());
+          };
+          if (remoteness(guided) < remoteness(cycle)) cycle = std::move(guided);
         }
-        if (bu >= 0) {
-          const int apex = lca(bu, bw);
-          std::vector<int> cycle, back;
-          for (int v = bu; v != apex; v = parent[v]) cycle.push_back(v);
-          cycle.push_back(apex);
-          std::reverse(cycle.begin(), cycle.end());
-          for (int v = bw; v != apex; v = parent[v]) back.push_back(v);
-          cycle.insert(cycle.end(), back.begin(), back.end());
-          cycle.push_back(apex);
-          return cycle;
-        }
+        if (!cycle.empty()) return cycle;
       }
       // Too thin to hold a cycle of free vertices: split the edges between path vertices and retry.
       const int edges = side.mesh.edge_count();

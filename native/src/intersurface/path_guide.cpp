@@ -11,7 +11,7 @@ namespace {
 constexpr double kPull = 4;           // factor growth per sqrt(area) of distance from A's path
 constexpr int kAffinePairs = 4;       // fewer pairs: a similarity (3) or centroids and areas
 constexpr double kMaxAnisotropy = 4;  // an affine fit stretching more than this is not trusted
-constexpr int kGuidePoints = 64;      // A's path is resampled to at most this many points
+constexpr int kGuidePoints = 64;      // segments of the coarse polyline searched first
 
 double area(const TriangleMesh& m) {
   double sum = 0;
@@ -46,7 +46,10 @@ PathGuide::PathGuide(const std::vector<Vec3>& on_a, const std::vector<Vec3>& on_
   if (n >= kAffinePairs) {
     // Least squares [x_b 1] M = x_a.
     Eigen::MatrixXd lhs(n, 4), rhs(n, 3);
-    for (int i = 0; i < n; ++i) lhs.row(i) << on_b[i].transpose(), 1.0, rhs.row(i) = on_a[i].transpose();
+    for (int i = 0; i < n; ++i) {
+      lhs.row(i) << on_b[i].transpose(), 1.0;
+      rhs.row(i) = on_a[i].transpose();
+    }
     const Eigen::MatrixXd m = lhs.colPivHouseholderQr().solve(rhs);
     const Eigen::Matrix3d linear = m.topRows(3).transpose();
     const Eigen::Vector3d sv = linear.jacobiSvd().singularValues();
@@ -71,15 +74,23 @@ PathGuide::PathGuide(const std::vector<Vec3>& on_a, const std::vector<Vec3>& on_
 }
 
 std::function<double(const Vec3&)> PathGuide::near(const std::vector<Vec3>& a_path) const {
-  std::vector<Vec3> points;
-  const size_t step = std::max<size_t>(1, (a_path.size() + kGuidePoints - 1) / kGuidePoints);
-  for (size_t i = 0; i < a_path.size(); i += step) points.push_back(a_path[i]);
-  if (!a_path.empty() && (a_path.size() - 1) % step != 0) points.push_back(a_path.back());
-  return [points = std::move(points), this](const Vec3& on_b) {
+  // The nearest segment of a coarse polyline (every step-th point), then the
+  // exact distance to A's segments around it: 0 on A's path itself, so a
+  // copy of A finds A's own paths.
+  const int step = std::max(1, (int(a_path.size()) + kGuidePoints - 1) / kGuidePoints);
+  return [path = a_path, step, this](const Vec3& on_b) {
     const Vec3 p = to_a(on_b);
-    double d = points.size() == 1 ? (p - points[0]).norm() : std::numeric_limits<double>::infinity();
-    for (size_t i = 0; i + 1 < points.size(); ++i) d = std::min(d, distance_to_segment(p, points[i], points[i + 1]));
-    return 1 + kPull * d / scale_a_;
+    const int n = int(path.size());
+    if (n == 1) return 1 + kPull * (p - path[0]).norm() / scale_a_;
+    int coarse = 0;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int i = 0; i + 1 < n; i += step) {
+      const double d = distance_to_segment(p, path[i], path[std::min(i + step, n - 1)]);
+      if (d < nearest) nearest = d, coarse = i;
+    }
+    for (int i = std::max(0, coarse - step); i + 1 < n && i < coarse + 2 * step; ++i)
+      nearest = std::min(nearest, distance_to_segment(p, path[i], path[i + 1]));
+    return 1 + kPull * nearest / scale_a_;
   };
 }
 

@@ -7,10 +7,10 @@
 // from 4 pairs unless it stretches more than 4:1 or mirrors, else a
 // similarity from 3, else the centroids and areas), and a step of B's search
 // costs more the farther it lies from A's path there:
-// 1 + kPull * distance / sqrt(A's area). A heuristic: a torus against a
-// stretched copy of itself, over 21 sets of true pairs, 12.1 -> 8.7 % mean
-// error (median 8.5 -> 5.6 %, without pairs 31 -> 5.6 %), though single
-// sets can get worse (BENCHMARKS.md).
+// 1 + kPull * distance / sqrt(A's area), and 1 on A's path itself, so that
+// a copy of A gets A's own paths. A torus against a stretched copy of
+// itself, over 21 sets of 0-16 true pairs: 12.1 -> 4.5 % mean error (median
+// 8.5 -> 2.7 %, without pairs 31 -> 5.2 %; BENCHMARKS.md).
 #pragma once
 #include <Eigen/Geometry>
 #include <functional>
