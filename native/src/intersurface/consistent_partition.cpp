@@ -150,9 +150,9 @@ class Side {
     return shortest_path(mesh, feature[from], feature[to], rules);
   }
 
-  double step(int u, int w, const StepFactor* factor) const {
+  double step(int u, int w, const std::vector<double>* weight) const {
     const double length = (mesh.position(w) - mesh.position(u)).norm();
-    return factor ? length * 0.5 * ((*factor)(mesh.position(u)) + (*factor)(mesh.position(w))) : length;
+    return weight ? length * 0.5 * ((*weight)[u] + (*weight)[w]) : length;
   }
 
   // Turns a traced node sequence into mesh vertices (splitting the edges of
@@ -214,9 +214,9 @@ class Side {
 
   // Dijkstra over unblocked vertices (of the triangles in `faces` when
   // given) from `sources`; distances and parents; steps weighted as in
-  // SearchRules::step_factor when `factor` is given.
+  // SearchRules::step_factor by the per-vertex `weight` when given.
   void dijkstra(const std::vector<int>& sources, const std::vector<char>* allowed, std::vector<double>& dist,
-                std::vector<int>& parent, const StepFactor* factor = nullptr) const {
+                std::vector<int>& parent, const std::vector<double>* weight = nullptr) const {
     const int n = mesh.vertex_count();
     dist.assign(n, kInf);
     parent.assign(n, -1);
@@ -232,7 +232,7 @@ class Side {
       if (d > dist[u]) continue;
       for (int w : mesh.ring(u)) {
         if (blocked[w] || (allowed && !(*allowed)[w])) continue;
-        const double nd = d + step(u, w, factor);
+        const double nd = d + step(u, w, weight);
         if (nd < dist[w]) {
           dist[w] = nd;
           parent[w] = u;
@@ -458,9 +458,13 @@ class Partitioner {
   // The shortest non-separating cycle that tree-cotree finds from `root` on
   // side s (steps weighted by `factor` when given); empty when none.
   std::vector<int> tree_cotree_cycle(const Side& side, int root, const Side::StepFactor* factor) const {
+    std::vector<double> weight;
+    if (factor)
+      for (int v = 0; v < side.mesh.vertex_count(); ++v) weight.push_back((*factor)(side.mesh.position(v)));
+    const std::vector<double>* weights = factor ? &weight : nullptr;
     std::vector<int> parent;
     std::vector<double> dist;
-    side.dijkstra({root}, nullptr, dist, parent, factor);
+    side.dijkstra({root}, nullptr, dist, parent, weights);
     const int edges = side.mesh.edge_count();
     std::vector<char> tree(edges, 0), cotree(edges, 0);
     for (int v = 0; v < side.mesh.vertex_count(); ++v)
@@ -514,7 +518,7 @@ class Partitioner {
       if (u < 0 || tree[e] || cotree[e] || side.path_edges.count(e) || side.blocked[u] || side.blocked[w]) continue;
       if (!std::isfinite(dist[u]) || !std::isfinite(dist[w])) continue;
       const double length =
-          dist[u] + dist[w] + side.step(u, w, factor) - 2 * dist[lca(u, w)];
+          dist[u] + dist[w] + side.step(u, w, weights) - 2 * dist[lca(u, w)];
       if (length < best) best = length, bu = u, bw = w;
     }
     if (bu >= 0) {

@@ -43,6 +43,12 @@ std::vector<int> shortest_path(const EditableMesh& mesh, int source, int target,
   cost[source] = 0;
   open.push({(mesh.position(source) - goal).norm(), source});
 
+  std::vector<double> factor(rules.step_factor ? nodes : 0, 0);  // per node once (0: not yet)
+  const auto factor_at = [&](int node, const Vec3& p) {
+    double& f = factor[node];
+    return f > 0 ? f : f = (*rules.step_factor)(p);
+  };
+
   auto relax = [&](int u, int w) {
     if (w == source || closed[w]) return;
     if (w == target) {
@@ -56,7 +62,7 @@ std::vector<int> shortest_path(const EditableMesh& mesh, int source, int target,
     const Vec3 pw = node_position(mesh, w, vertices), pu = node_position(mesh, u, vertices);
     double step = (pw - pu).norm();
     if (u >= vertices || w >= vertices) step *= 1 + rules.midpoint_penalty;
-    if (rules.step_factor) step *= 0.5 * ((*rules.step_factor)(pu) + (*rules.step_factor)(pw));
+    if (rules.step_factor) step *= 0.5 * (factor_at(u, pu) + factor_at(w, pw));
     if (cost[u] + step < cost[w]) {
       cost[w] = cost[u] + step;
       parent[w] = u;
