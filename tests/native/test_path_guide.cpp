@@ -1,0 +1,61 @@
+// The transform that brings B into A's frame for the guided partition
+// (intersurface/path_guide.h): exact when the pairs are related by an affine
+// map or a similarity, the centroids and areas without pairs, and the step
+// factor 1 on A's path itself.
+#include <gtest/gtest.h>
+
+#include "intersurface/path_guide.h"
+
+namespace cmaps {
+namespace {
+
+// A tetrahedron-like blob with some spread in every direction.
+TriangleMesh blob() {
+  TriangleMesh m;
+  m.vertices = {{0, 0, 0}, {2, 0, 0.3}, {0.4, 1.5, 0}, {0.2, 0.3, 1.2}, {1.1, 0.9, 0.8}, {1.7, 1.2, -0.4}};
+  m.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  return m;
+}
+
+TriangleMesh moved(const TriangleMesh& m, const Eigen::Affine3d& t) {
+  TriangleMesh out = m;
+  for (Vec3& p : out.vertices) p = t * p;
+  return out;
+}
+
+TEST(PathGuide, RecoversAnAffineMapFromFourOrMorePairs) {
+  const TriangleMesh a = blob();
+  Eigen::Affine3d to_b = Eigen::Affine3d::Identity();
+  to_b.linear() << 1.5, 0.2, 0, 0, 1.0, 0.1, 0.1, 0, 0.7;
+  to_b.translation() = Vec3(3, -1, 2);
+  const TriangleMesh b = moved(a, to_b);
+  const PathGuide guide(a.vertices, b.vertices, a, b);
+  for (size_t i = 0; i < a.vertices.size(); ++i) EXPECT_LT((guide.to_a(b.vertices[i]) - a.vertices[i]).norm(), 1e-12);
+  // On A's path the factor is 1; it grows away from it.
+  const std::vector<Vec3> path = {a.vertices[0], a.vertices[1], a.vertices[4]};
+  const auto factor = guide.near(path);
+  EXPECT_NEAR(factor(to_b * Vec3(1, 0, 0.15)), 1, 1e-12);  // on the first segment
+  EXPECT_GT(factor(to_b * Vec3(1, 2, 0.15)), 1.5);
+  EXPECT_EQ(guide.nearest(a.vertices[4], b.vertices), 4);
+}
+
+TEST(PathGuide, SimilarityFromThreePairsAndCentroidsWithout) {
+  const TriangleMesh a = blob();
+  const Eigen::Affine3d to_b =
+      Eigen::Translation3d(1, 2, 3) * Eigen::AngleAxisd(0.7, Vec3(1, 2, 0.5).normalized()) * Eigen::Scaling(2.0);
+  const TriangleMesh b = moved(a, to_b);
+  const PathGuide three({a.vertices.begin(), a.vertices.begin() + 3}, {b.vertices.begin(), b.vertices.begin() + 3}, a,
+                        b);
+  for (size_t i = 0; i < a.vertices.size(); ++i) EXPECT_LT((three.to_a(b.vertices[i]) - a.vertices[i]).norm(), 1e-12);
+  // No pairs: centroids onto each other, B scaled to A's area (no rotation).
+  const PathGuide none({}, {}, a, b);
+  Vec3 ca = Vec3::Zero(), cb = Vec3::Zero();
+  for (size_t i = 0; i < a.vertices.size(); ++i) ca += a.vertices[i], cb += b.vertices[i];
+  ca /= double(a.vertices.size()), cb /= double(b.vertices.size());
+  EXPECT_LT((none.to_a(cb) - ca).norm(), 1e-12);
+  EXPECT_NEAR((none.to_a(b.vertices[1]) - none.to_a(b.vertices[0])).norm(), (a.vertices[1] - a.vertices[0]).norm(),
+              1e-12);
+}
+
+}  // namespace
+}  // namespace cmaps
