@@ -11,6 +11,7 @@
 #include <unordered_set>
 
 #include "consistent_maps/errors.h"
+#include "consistent_maps/mesh_check.h"
 #include "intersurface/path_guide.h"
 #include "paths/mesh_search.h"
 
@@ -249,13 +250,7 @@ class Partitioner {
       : genus_(genus), guide_(pair_positions(a, features, 0), pair_positions(b, features, 1), a, b) {
     sides_.emplace_back(a);
     sides_.emplace_back(b);
-    for (int s = 0; s < 2; ++s) {
-      const TriangleMesh& m = s == 0 ? a : b;
-      double area = 0;
-      for (const Triangle& t : m.triangles)
-        area += 0.5 * (m.vertices[t[1]] - m.vertices[t[0]]).cross(m.vertices[t[2]] - m.vertices[t[0]]).norm();
-      scale_[s] = std::sqrt(std::max(area, 1e-300));
-    }
+    for (int s = 0; s < 2; ++s) scale_[s] = std::sqrt(std::max(surface_area(s == 0 ? a : b), 1e-300));
     for (const auto& f : features) add_pair(f[0], f[1]);
   }
 

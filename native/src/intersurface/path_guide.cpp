@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "consistent_maps/mesh_check.h"
+
 namespace cmaps {
 namespace {
 
@@ -12,13 +14,6 @@ constexpr double kPull = 4;           // factor growth per sqrt(area) of distanc
 constexpr int kAffinePairs = 4;       // fewer pairs: a similarity (3) or centroids and areas
 constexpr double kMaxAnisotropy = 4;  // an affine fit stretching more than this is not trusted
 constexpr int kGuidePoints = 64;      // segments of the coarse polyline searched first
-
-double area(const TriangleMesh& m) {
-  double sum = 0;
-  for (const Triangle& t : m.triangles)
-    sum += 0.5 * (m.vertices[t[1]] - m.vertices[t[0]]).cross(m.vertices[t[2]] - m.vertices[t[0]]).norm();
-  return sum;
-}
 
 Vec3 centroid(const std::vector<Vec3>& points) {
   Vec3 c = Vec3::Zero();
@@ -37,7 +32,7 @@ double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
 
 PathGuide::PathGuide(const std::vector<Vec3>& on_a, const std::vector<Vec3>& on_b, const TriangleMesh& a,
                      const TriangleMesh& b) {
-  const double area_a = area(a), area_b = area(b);
+  const double area_a = surface_area(a), area_b = surface_area(b);
   scale_a_ = std::sqrt(std::max(area_a, 1e-300));
   const int n = int(std::min(on_a.size(), on_b.size()));
   Eigen::Matrix3Xd from(3, n), to(3, n);
