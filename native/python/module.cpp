@@ -547,19 +547,17 @@ py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, co
   });
 
   py::dict d;
-  const auto [ab_triangle, ab_barycentric] = to_numpy(result.a_to_b);
-  const auto [ba_triangle, ba_barycentric] = to_numpy(result.b_to_a);
-  d["a_to_b_triangle"] = ab_triangle;
-  d["a_to_b_barycentric"] = ab_barycentric;
-  d["b_to_a_triangle"] = ba_triangle;
-  d["b_to_a_barycentric"] = ba_barycentric;
+  // Points on a mesh as '<name>_triangle' (n,) and '<name>_barycentric' (n, 3).
+  const auto put = [&d](const std::string& name, const std::vector<cmaps::SurfacePoint>& points) {
+    const auto [triangles, barycentric] = to_numpy(points);
+    d[(name + "_triangle").c_str()] = triangles;
+    d[(name + "_barycentric").c_str()] = barycentric;
+  };
+  put("a_to_b", result.a_to_b);
+  put("b_to_a", result.b_to_a);
   if (corner_images) {
-    const auto [ab_corner_triangle, ab_corner_barycentric] = to_numpy(result.a_corners_to_b);
-    const auto [ba_corner_triangle, ba_corner_barycentric] = to_numpy(result.b_corners_to_a);
-    d["a_corners_to_b_triangle"] = ab_corner_triangle;
-    d["a_corners_to_b_barycentric"] = ab_corner_barycentric;
-    d["b_corners_to_a_triangle"] = ba_corner_triangle;
-    d["b_corners_to_a_barycentric"] = ba_corner_barycentric;
+    put("a_corners_to_b", result.a_corners_to_b);
+    put("b_corners_to_a", result.b_corners_to_a);
   }
   d["a_on_b"] = to_numpy(result.a_on_b);
   d["b_on_a"] = to_numpy(result.b_on_a);
