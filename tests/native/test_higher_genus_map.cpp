@@ -25,6 +25,7 @@ using test::expect_valid_points;
 using test::farthest_points;
 using test::nudged_corner;
 using test::shared_mesh;
+using test::stretched_copy;
 
 struct Pair {
   const char* a;
@@ -185,12 +186,8 @@ TEST(HigherGenusMap, ReorderedCopyMapsOntoItself) {
 TEST(HigherGenusMap, StretchedCopyMatchesItsHandles) {
   const TriangleMesh a = read_mesh(shared_mesh("higher-genus/torus.obj"));
   const int n = int(a.vertices.size());
-  std::vector<int> new_index(n);
-  for (int v = 0; v < n; ++v) new_index[v] = int((std::int64_t(v) * 7919 + 13) % n);
-  TriangleMesh b;
-  b.vertices.resize(n);
-  for (int v = 0; v < n; ++v) b.vertices[new_index[v]] = a.vertices[v].cwiseProduct(Vec3(1.5, 1.0, 0.7));
-  for (const Triangle& t : a.triangles) b.triangles.push_back({new_index[t[0]], new_index[t[1]], new_index[t[2]]});
+  std::vector<int> new_index;
+  const TriangleMesh b = stretched_copy(a, Vec3(1.5, 1.0, 0.7), new_index);
   for (const auto& [count, tolerance] : {std::pair{0, 0.1}, {16, 0.04}}) {
     std::vector<FeaturePair> pairs;
     if (count > 0)

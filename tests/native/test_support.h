@@ -69,4 +69,17 @@ inline double diagonal(const TriangleMesh& mesh) {
   return (hi - lo).norm();
 }
 
+// `mesh` scaled per axis, its vertex v renumbered new_index[v] = (7919 v + 13)
+// mod n (a permutation for the meshes used): a copy with known correspondence.
+inline TriangleMesh stretched_copy(const TriangleMesh& mesh, const Vec3& scale, std::vector<int>& new_index) {
+  const int n = int(mesh.vertices.size());
+  new_index.resize(n);
+  for (int v = 0; v < n; ++v) new_index[v] = int((std::int64_t(v) * 7919 + 13) % n);
+  TriangleMesh copy;
+  copy.vertices.resize(n);
+  for (int v = 0; v < n; ++v) copy.vertices[new_index[v]] = mesh.vertices[v].cwiseProduct(scale);
+  for (const Triangle& t : mesh.triangles) copy.triangles.push_back({new_index[t[0]], new_index[t[1]], new_index[t[2]]});
+  return copy;
+}
+
 }  // namespace cmaps::test

@@ -122,20 +122,25 @@ class PatchEnergy {
     return e;
   }
 
-  // One descent step of vertex v: normalized gradient (central differences), halving line search.
-  bool improve(int v) {
+  // Whether v may move: not when its ring here holds too many target vertices to re-map.
+  bool movable(int v) const {
     std::size_t inside = 0;
-    for (int f : source_.mesh.faces_of(v)) {
+    for (int f : ring(v)) {
       const auto it = host_.find(f);
       if (it != host_.end()) inside += it->second.size();
     }
-    if (inside > kMaxRemapped) return false;
+    return inside <= kMaxRemapped;
+  }
+
+  // One descent step of vertex v: normalized gradient (central differences), halving line search.
+  bool improve(int v) {
+    if (!movable(v)) return false;
     const Vec2 u0 = uv_.at(v);
     Move current = trial(v, u0);
     if (!std::isfinite(current.energy)) return false;
     double length = 0;
     int count = 0;
-    for (int f : source_.mesh.faces_of(v))
+    for (int f : ring(v))
       for (int w : source_.mesh.triangles()[f])
         if (w != v) length += (uv_.at(w) - u0).norm(), ++count;
     length /= std::max(count, 1);
@@ -163,7 +168,6 @@ class PatchEnergy {
     return false;
   }
 
- private:
   // Vertex v at canonical point p: its image, the re-mapped target vertices, the ring's energy.
   struct Move {
     Vec2 point;
@@ -173,26 +177,19 @@ class PatchEnergy {
     double energy = kInf;
   };
 
-  static Image image_in(const PartitionSide& side, int face, const std::array<double, 3>& w, double scale) {
-    const Triangle& t = side.mesh.triangles()[face];
-    const Vec3 &a = side.mesh.position(t[0]), &b = side.mesh.position(t[1]), &c = side.mesh.position(t[2]);
-    return {scale * (w[0] * a + w[1] * b + w[2] * c), (b - a).cross(c - a).normalized()};
-  }
-
-  static Image locate(const PatchLocator& locator, const PartitionSide& side, const Vec2& p, double scale) {
-    const auto [face, w] = locator.locate(p);
-    return image_in(side, face, w, scale);
-  }
-
+  // The energy of v's triangles in this patch and of the target's triangles
+  // around the target vertices they hold, with v at p; inf when one of v's
+  // triangles would turn over.
   Move trial(int v, const Vec2& p) const {
     Move m;
     m.point = p;
-    for (int f : source_.mesh.faces_of(v))
+    const std::vector<int> faces = ring(v);
+    for (int f : faces)
       if (orientation_ * signed_area(f, v, p) <= 0) return m;
     m.image = locate(*target_locator_, target_, p, scale_);
     // Target vertices inside the ring: their source triangle with v at p.
     std::vector<int> touched;
-    for (int f : source_.mesh.faces_of(v)) {
+    for (int f : faces) {
       const auto it = host_.find(f);
       if (it == host_.end()) continue;
       for (int w : it->second) {
@@ -200,7 +197,7 @@ class PatchEnergy {
         int best = -1;
         std::array<double, 3> weights{};
         double score = -kInf;
-        for (int g : source_.mesh.faces_of(v)) {
+        for (int g : faces) {
           const Triangle& t = source_.mesh.triangles()[g];
           Vec2 c[3];
           for (int k = 0; k < 3; ++k) c[k] = t[k] == v ? p : uv_.at(t[k]);
@@ -220,7 +217,7 @@ class PatchEnergy {
     std::sort(touched.begin(), touched.end());
     touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
     double e = 0;
-    for (int f : source_.mesh.faces_of(v)) e += source_energy(f, v, &m.image);
+    for (int f : faces) e += source_energy(f, v, &m.image);
     for (int g : touched)
       if (back_shape_.count(g)) e += scale_ * scale_ * target_energy(g, m.remapped);
     m.energy = e;
@@ -230,11 +227,33 @@ class PatchEnergy {
   void apply(int v, const Move& m) {
     uv_[v] = m.point;
     image_[v] = m.image;
-    for (int f : source_.mesh.faces_of(v)) host_.erase(f);
+    for (int f : ring(v)) host_.erase(f);
     for (size_t i = 0; i < m.remapped.size(); ++i) {
       back_image_[m.remapped[i].first] = m.remapped[i].second;
       host_[m.hosts[i]].push_back(m.remapped[i].first);
     }
+  }
+
+  const std::unordered_map<int, Vec2>& uv() const { return uv_; }
+
+ private:
+  // v's triangles in this patch (a vertex on a path has triangles in two).
+  std::vector<int> ring(int v) const {
+    std::vector<int> faces;
+    for (int f : source_.mesh.faces_of(v))
+      if (shape_.count(f)) faces.push_back(f);
+    return faces;
+  }
+
+  static Image image_in(const PartitionSide& side, int face, const std::array<double, 3>& w, double scale) {
+    const Triangle& t = side.mesh.triangles()[face];
+    const Vec3 &a = side.mesh.position(t[0]), &b = side.mesh.position(t[1]), &c = side.mesh.position(t[2]);
+    return {scale * (w[0] * a + w[1] * b + w[2] * c), (b - a).cross(c - a).normalized()};
+  }
+
+  static Image locate(const PatchLocator& locator, const PartitionSide& side, const Vec2& p, double scale) {
+    const auto [face, w] = locator.locate(p);
+    return image_in(side, face, w, scale);
   }
 
   double source_energy(int f, int v, const Image* q) const {
@@ -275,6 +294,64 @@ class PatchEnergy {
   std::unique_ptr<PatchLocator> target_locator_;
 };
 
+// A vertex inside a path, between the two patches beside it: it slides
+// along the path (both patches' canonical edge, the same fraction of it in
+// each), between its path neighbours, so the map along paths is optimized
+// too and not left at arc length.
+struct PathSlide {
+  int vertex, previous, next;
+  int patches[2];
+};
+
+std::vector<PathSlide> path_slides(const PartitionSide& side) {
+  std::vector<PathSlide> slides;
+  for (const auto& path : side.paths)
+    for (std::size_t i = 1; i + 1 < path.size(); ++i) {
+      PathSlide slide{path[i], path[i - 1], path[i + 1], {-1, -1}};
+      for (int f : side.mesh.faces_of(slide.vertex)) {
+        const int t = side.patch[f];
+        if (slide.patches[0] < 0) slide.patches[0] = t;
+        else if (t != slide.patches[0]) slide.patches[1] = t;
+      }
+      // A path with one patch on both sides has no second chart to slide in.
+      if (slide.patches[1] >= 0) slides.push_back(slide);
+    }
+  return slides;
+}
+
+// One descent step of a path vertex in its fraction along the path: central
+// differences, halving line search, both patches' energies summed.
+bool slide(const PathSlide& s, PatchEnergy& first, PatchEnergy& second) {
+  PatchEnergy* energy[2] = {&first, &second};
+  if (!first.movable(s.vertex) || !second.movable(s.vertex)) return false;
+  const Vec2 &a = first.uv().at(s.previous), &b = first.uv().at(s.next);
+  const double at = (first.uv().at(s.vertex) - a).dot(b - a) / (b - a).squaredNorm();
+  const auto trials = [&](double fraction) {
+    std::array<PatchEnergy::Move, 2> moves;
+    for (int k = 0; k < 2; ++k) {
+      const Vec2 &p = energy[k]->uv().at(s.previous), &q = energy[k]->uv().at(s.next);
+      moves[k] = energy[k]->trial(s.vertex, p + fraction * (q - p));
+    }
+    return moves;
+  };
+  const auto total = [](const std::array<PatchEnergy::Move, 2>& moves) { return moves[0].energy + moves[1].energy; };
+  const double current = total(trials(at));
+  if (!std::isfinite(current)) return false;
+  constexpr double h = 1e-4;
+  const double plus = total(trials(at + h)), minus = total(trials(at - h));
+  if (!std::isfinite(plus) || !std::isfinite(minus) || plus == minus) return false;
+  const double direction = plus < minus ? 1 : -1;
+  double step = 0.25;
+  for (int k = 0; k < kHalvings; ++k, step *= 0.5) {
+    const auto moves = trials(at + direction * step);
+    if (total(moves) < current) {
+      for (int j = 0; j < 2; ++j) energy[j]->apply(s.vertex, moves[j]);
+      return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 MapOptimization optimize_patch_map(const PartitionSide& source, PatchParameterization& source_uv,
@@ -289,33 +366,54 @@ MapOptimization optimize_patch_map(const PartitionSide& source, PatchParameteriz
     for (int v : path) on_path[v] = 1;
   const double scale = std::sqrt(surface_area(source) / surface_area(target));
 
+  std::vector<std::unique_ptr<PatchEnergy>> energy(patches);
+  std::vector<std::vector<int>> free(patches);
   std::vector<double> before(patches, 0), after(patches, 0), area(patches, 0);
-  std::vector<int> moves(patches, 0);
   parallel_for(
       patches, threads,
       [&](int t) {
-        PatchEnergy energy(source, source_uv.uv[t], faces[t], target, target_uv.uv[t], target_faces[t], scale);
-        before[t] = energy.total(area[t]);
-        std::vector<int> free;
+        energy[t] = std::make_unique<PatchEnergy>(source, source_uv.uv[t], faces[t], target, target_uv.uv[t],
+                                                  target_faces[t], scale);
+        before[t] = energy[t]->total(area[t]);
         for (const auto& [v, p] : source_uv.uv[t])
-          if (!on_path[v]) free.push_back(v);
-        std::sort(free.begin(), free.end());
-        for (int sweep = 0; sweep < sweeps; ++sweep) {
-          int moved = 0;
-          for (int v : free) moved += energy.improve(v);
-          moves[t] += moved;
-          if (moved == 0) break;
-        }
-        double ignored = 0;
-        after[t] = energy.total(ignored);
+          if (!on_path[v]) free[t].push_back(v);
+        std::sort(free[t].begin(), free[t].end());
       },
       1);
+  const std::vector<PathSlide> slides = path_slides(source);
+
+  // Rounds of one sweep over every unsettled patch's interior (in parallel),
+  // then one over the path vertices; a patch settles when a sweep moves
+  // nothing in it and no path vertex beside it slid.
   MapOptimization result;
+  std::vector<char> settled(patches, 0);
+  for (int sweep = 0; sweep < sweeps; ++sweep) {
+    std::vector<int> moved(patches, 0);
+    parallel_for(
+        patches, threads,
+        [&](int t) {
+          if (settled[t]) return;
+          for (int v : free[t]) moved[t] += energy[t]->improve(v);
+        },
+        1);
+    for (int t = 0; t < patches; ++t) settled[t] = moved[t] == 0, result.moves += moved[t];
+    int slid = 0;
+    for (const PathSlide& s : slides)
+      if (slide(s, *energy[s.patches[0]], *energy[s.patches[1]])) {
+        ++slid;
+        for (int t : s.patches) settled[t] = 0;
+      }
+    result.moves += slid;
+    if (slid == 0 && std::all_of(settled.begin(), settled.end(), [](char c) { return c; })) break;
+  }
+  for (int t = 0; t < patches; ++t) {
+    double ignored = 0;
+    after[t] = energy[t]->total(ignored);
+  }
   double total_area = 0;
   for (int t = 0; t < patches; ++t) {
     result.energy_before += before[t];
     result.energy_after += after[t];
-    result.moves += moves[t];
     total_area += area[t];
   }
   if (total_area > 0) result.energy_before /= total_area, result.energy_after /= total_area;

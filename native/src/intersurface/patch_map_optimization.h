@@ -1,11 +1,13 @@
 // Local optimization of a patch-wise inter-surface map for its symmetric
 // Dirichlet energy: the source's free vertices (off the partition's paths)
-// move inside their patch's canonical triangle, each to a lower energy of
-// its triangles mapped onto the target (chords between the images, the
-// target scaled to the source's area), never so far that a triangle of the
-// source's embedding turns over. The embedding stays a bijection onto the
-// canonical triangle, so the map stays continuous and bijective; the path
-// network itself (and so the map along it) does not move.
+// move inside their patch's canonical triangle, and the vertices inside a
+// path slide along it (the same fraction of the base edge in both patches
+// beside it, between their path neighbours), each to a lower energy of its
+// triangles mapped onto the target (chords between the images, the target
+// scaled to the source's area), never so far that a triangle of the source's
+// embedding turns over. The embedding stays a bijection onto each canonical
+// triangle and continuous across the paths, so the map stays continuous and
+// bijective; the paths themselves and the base vertices do not move.
 #pragma once
 #include "intersurface/patch_parameterization.h"
 

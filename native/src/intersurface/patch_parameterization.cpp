@@ -4,6 +4,7 @@
 #include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "common/parallel_for.h"
@@ -36,10 +37,108 @@ void split_chords(PartitionSide& side) {
   }
 }
 
+// The patch's L2 stretch (Sander et al. 2001), and with `per_vertex` each
+// vertex's over its triangles. Infinite when a triangle is degenerate in the
+// canonical triangle.
+double stretch_of(const PartitionSide& side, const std::unordered_map<int, Vec2>& uv, const std::vector<int>& faces,
+                  std::unordered_map<int, double>* per_vertex) {
+  std::unordered_map<int, double> sum, area;
+  double all = 0, all_area = 0;
+  for (int f : faces) {
+    const Triangle& t = side.mesh.triangles()[f];
+    const Vec3 q[3] = {side.mesh.position(t[0]), side.mesh.position(t[1]), side.mesh.position(t[2])};
+    const Vec2 p[3] = {uv.at(t[0]), uv.at(t[1]), uv.at(t[2])};
+    const double a2 = 0.5 * ((p[1] - p[0]).x() * (p[2] - p[0]).y() - (p[1] - p[0]).y() * (p[2] - p[0]).x());
+    const double a3 = 0.5 * (q[1] - q[0]).cross(q[2] - q[0]).norm();
+    double squared = std::numeric_limits<double>::infinity();
+    if (std::abs(a2) > 0) {
+      const Vec3 ss = (q[0] * (p[1].y() - p[2].y()) + q[1] * (p[2].y() - p[0].y()) + q[2] * (p[0].y() - p[1].y())) / (2 * a2);
+      const Vec3 st = (q[0] * (p[2].x() - p[1].x()) + q[1] * (p[0].x() - p[2].x()) + q[2] * (p[1].x() - p[0].x())) / (2 * a2);
+      squared = 0.5 * (ss.squaredNorm() + st.squaredNorm());
+    }
+    all += a3 * squared, all_area += a3;
+    if (per_vertex)
+      for (int v : t) sum[v] += a3 * squared, area[v] += a3;
+  }
+  if (per_vertex) {
+    for (auto& [v, x] : sum) x = area[v] > 0 ? std::sqrt(x / area[v]) : 1;
+    *per_vertex = std::move(sum);
+  }
+  return all_area > 0 ? std::sqrt(all / all_area) : 0;
+}
+
+// Tutte-style embedding of one patch's interior given positive weights and the fixed boundary.
+class PatchEmbedding {
+ public:
+  PatchEmbedding(const PartitionSide& side, const std::vector<int>& faces, std::unordered_map<int, Vec2>& uv)
+      : side_(side), faces_(faces), uv_(uv) {
+    for (int f : faces)
+      for (int v : side.mesh.triangles()[f])
+        if (!uv.count(v) && !index_.count(v)) index_.emplace(v, int(index_.size()));
+  }
+
+  bool empty() const { return index_.empty(); }
+
+  // Mean-value weights of every interior vertex's neighbours.
+  std::vector<std::unordered_map<int, double>> mean_value_weights() const {
+    std::vector<std::unordered_map<int, double>> weight(index_.size());
+    for (int f : faces_) {
+      const Triangle& t = side_.mesh.triangles()[f];
+      for (int k = 0; k < 3; ++k) {
+        const auto it = index_.find(t[k]);
+        if (it == index_.end()) continue;
+        const Vec3 &p = side_.mesh.position(t[k]), &q = side_.mesh.position(t[(k + 1) % 3]),
+                   &r = side_.mesh.position(t[(k + 2) % 3]);
+        const double lq = (q - p).norm(), lr = (r - p).norm();
+        const double angle = std::atan2((q - p).cross(r - p).norm(), (q - p).dot(r - p));
+        const double half = std::tan(angle / 2);
+        for (const auto& [v, l] : {std::pair<int, double>{t[(k + 1) % 3], lq}, {t[(k + 2) % 3], lr}}) {
+          const double w = half / l;
+          weight[it->second][v] += std::isfinite(w) && w > 0 ? w : 1e-12;
+        }
+      }
+    }
+    return weight;
+  }
+
+  // Every interior vertex at the weighted mean of its neighbours.
+  void solve(const std::vector<std::unordered_map<int, double>>& weight) {
+    const int n = int(index_.size());
+    std::vector<Eigen::Triplet<double>> entries;
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
+    for (const auto& [v, i] : index_) {
+      double total = 0;
+      for (const auto& [u, w] : weight[i]) {
+        total += w;
+        const auto j = index_.find(u);
+        if (j != index_.end()) entries.emplace_back(i, j->second, -w);
+        else rhs.row(i) += w * uv_.at(u).transpose();
+      }
+      entries.emplace_back(i, i, total);
+    }
+    Eigen::SparseMatrix<double> matrix(n, n);
+    matrix.setFromTriplets(entries.begin(), entries.end());
+    Eigen::SparseLU<Eigen::SparseMatrix<double>> solver;
+    solver.compute(matrix);
+    if (solver.info() != Eigen::Success) throw Error("internal error: a patch parameterization is singular");
+    const Eigen::MatrixXd x = solver.solve(rhs);
+    for (const auto& [v, i] : index_) uv_[v] = x.row(i).transpose();
+  }
+
+ private:
+  const PartitionSide& side_;
+  const std::vector<int>& faces_;
+  std::unordered_map<int, Vec2>& uv_;
+  std::unordered_map<int, int> index_;  // interior vertex -> unknown
+};
+
 // Canonical points of one patch: its boundary by arc length, its interior
-// by mean-value weights.
+// by mean-value weights, then stretch reweighting: each round divides every
+// weight by the stretch at the neighbour it points to and solves again, so
+// crowded regions (a protrusion squeezed into a corner of the triangle) open
+// up. Weights stay positive, so every round is a bijective embedding.
 std::unordered_map<int, Vec2> parameterize(const PartitionSide& side, const BaseTriangle& base,
-                                           const std::vector<int>& faces) {
+                                           const std::vector<int>& faces, int stretch_rounds) {
   std::unordered_map<int, Vec2> uv;
   for (int k = 0; k < 3; ++k) {
     std::vector<int> path = side.paths[base.edges[k]];
@@ -52,49 +151,25 @@ std::unordered_map<int, Vec2> parameterize(const PartitionSide& side, const Base
       uv[path[i]] = (1 - t) * kCorner[k] + t * kCorner[(k + 1) % 3];
     }
   }
-  std::unordered_map<int, int> index;  // interior vertex -> unknown
-  for (int f : faces)
-    for (int v : side.mesh.triangles()[f])
-      if (!uv.count(v) && !index.count(v)) index.emplace(v, int(index.size()));
-  const int n = int(index.size());
-  if (n == 0) return uv;
-
-  std::vector<Eigen::Triplet<double>> entries;
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
-  std::vector<std::unordered_map<int, double>> weight(n);
-  for (int f : faces) {
-    const Triangle& t = side.mesh.triangles()[f];
-    for (int k = 0; k < 3; ++k) {
-      const auto it = index.find(t[k]);
-      if (it == index.end()) continue;
-      const Vec3 &p = side.mesh.position(t[k]), &q = side.mesh.position(t[(k + 1) % 3]),
-                 &r = side.mesh.position(t[(k + 2) % 3]);
-      const double lq = (q - p).norm(), lr = (r - p).norm();
-      const double angle = std::atan2((q - p).cross(r - p).norm(), (q - p).dot(r - p));
-      const double half = std::tan(angle / 2);
-      for (const auto& [v, l] : {std::pair<int, double>{t[(k + 1) % 3], lq}, {t[(k + 2) % 3], lr}}) {
-        const double w = half / l;
-        weight[it->second][v] += std::isfinite(w) && w > 0 ? w : 1e-12;
-      }
+  PatchEmbedding embedding(side, faces, uv);
+  if (embedding.empty()) return uv;
+  std::vector<std::unordered_map<int, double>> weight = embedding.mean_value_weights();
+  embedding.solve(weight);
+  std::unordered_map<int, double> sigma;
+  double stretch = stretch_of(side, uv, faces, &sigma);
+  for (int round = 0; round < stretch_rounds && std::isfinite(stretch); ++round) {
+    const std::unordered_map<int, Vec2> kept = uv;
+    for (auto& row : weight)
+      for (auto& [v, w] : row) w /= std::max(sigma.at(v), 1e-12);
+    embedding.solve(weight);
+    std::unordered_map<int, double> next_sigma;
+    const double next = stretch_of(side, uv, faces, &next_sigma);
+    if (!(next < stretch)) {
+      uv = kept;
+      break;
     }
+    stretch = next, sigma = std::move(next_sigma);
   }
-  for (const auto& [v, i] : index) {
-    double total = 0;
-    for (const auto& [u, w] : weight[i]) {
-      total += w;
-      const auto j = index.find(u);
-      if (j != index.end()) entries.emplace_back(i, j->second, -w);
-      else rhs.row(i) += w * uv.at(u).transpose();
-    }
-    entries.emplace_back(i, i, total);
-  }
-  Eigen::SparseMatrix<double> matrix(n, n);
-  matrix.setFromTriplets(entries.begin(), entries.end());
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> solver;
-  solver.compute(matrix);
-  if (solver.info() != Eigen::Success) throw Error("internal error: a patch parameterization is singular");
-  const Eigen::MatrixXd x = solver.solve(rhs);
-  for (const auto& [v, i] : index) uv[v] = x.row(i).transpose();
   return uv;
 }
 
@@ -157,14 +232,19 @@ std::vector<InputLocation> locate_canonical(const PartitionSide& target, const P
 
 }  // namespace
 
-PatchParameterization parameterize_patches(PartitionSide& side, const ConsistentPartition& partition) {
+PatchParameterization parameterize_patches(PartitionSide& side, const ConsistentPartition& partition,
+                                           int stretch_rounds) {
   split_chords(side);
   const int patches = int(partition.triangles.size());
   const std::vector<std::vector<int>> faces = faces_by_patch(side, patches);
   PatchParameterization result;
   result.uv.resize(patches);
-  parallel_for(patches, 2, [&](int t) { result.uv[t] = parameterize(side, partition.triangles[t], faces[t]); });
+  parallel_for(patches, 2, [&](int t) { result.uv[t] = parameterize(side, partition.triangles[t], faces[t], stretch_rounds); });
   return result;
+}
+
+double patch_stretch(const PartitionSide& side, const std::unordered_map<int, Vec2>& uv, const std::vector<int>& faces) {
+  return stretch_of(side, uv, faces, nullptr);
 }
 
 std::vector<InputLocation> map_vertices(const PartitionSide& source, const PatchParameterization& source_uv,
