@@ -32,17 +32,28 @@ def write_features(directory, pairs):
     return str(path)
 
 
+def write_obj(path, vertices, triangles):
+    with open(path, "w") as f:
+        f.writelines(f"v {x:.17g} {y:.17g} {z:.17g}\n" for x, y, z in vertices)
+        f.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in triangles)
+    return path
+
+
+def holed(vertices, triangles, centres):
+    """The mesh without the triangles around each of `centres` (and without those vertices)."""
+    keep = np.ones(len(vertices), bool)
+    keep[list(centres)] = False
+    index = np.cumsum(keep) - 1
+    return vertices[keep], index[triangles[keep[triangles].all(axis=1)]]
+
+
 def stretched_torus(directory):
     """The torus re-indexed and scaled by (1.5, 1, 0.7); returns its path and old -> new vertex index."""
     vertices, triangles = _native.read_mesh(str(HIGHER / "torus.obj"))
     new_index = np.random.default_rng(1).permutation(len(vertices))
     moved = np.empty_like(vertices)
     moved[new_index] = vertices * np.array([1.5, 1.0, 0.7])
-    path = Path(directory) / "torus_stretched.obj"
-    with open(path, "w") as f:
-        f.writelines(f"v {x:.17g} {y:.17g} {z:.17g}\n" for x, y, z in moved)
-        f.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in new_index[triangles])
-    return path, new_index, moved
+    return write_obj(Path(directory) / "torus_stretched.obj", moved, new_index[triangles]), new_index, moved
 
 
 def obj_positions(path):
@@ -109,6 +120,29 @@ def main():
             lines.append(row("torus - stretched copy", result, f" {k} true pairs; mean error {error} of the diagonal",
                              medians(HIGHER / "torus.obj", path, tmp + "/out")))
             print(lines[-1], flush=True)
+        # Holes: two on each mesh (the triangles around two far-apart vertices removed).
+        torus, knot = (_native.read_mesh(str(HIGHER / name)) for name in ("torus.obj", "knot.obj"))
+        holed_torus = holed(*torus, farthest_points(torus[0], 2))
+        path_a = write_obj(Path(tmp) / "torus_holes.obj", *holed_torus)
+        path_knot = write_obj(Path(tmp) / "knot_holes.obj", *holed(*knot, farthest_points(knot[0], 2)))
+        result = run_cmaps("intersurface", str(path_a), str(path_knot), "-o", tmp + "/out")
+        lines.append(row("torus - knot, 2 holes each", result, " 0 pairs (rim pairs added)",
+                         medians(path_a, path_knot, tmp + "/out")))
+        print(lines[-1], flush=True)
+        vertices, triangles = holed_torus
+        new_index = np.random.default_rng(1).permutation(len(vertices))
+        moved = np.empty_like(vertices)
+        moved[new_index] = vertices * np.array([1.5, 1.0, 0.7])
+        path_b = write_obj(Path(tmp) / "torus_holes_stretched.obj", moved, new_index[triangles])
+        diagonal = np.linalg.norm(moved.max(axis=0) - moved.min(axis=0))
+        chosen = farthest_points(vertices, 16)
+        features = write_features(tmp, [(int(v), int(new_index[v])) for v in chosen])
+        result = run_cmaps("intersurface", str(path_a), str(path_b), "--features", features, "-o", tmp + "/out")
+        error = np.linalg.norm(obj_positions(tmp + "/out/A_on_B.obj") - moved[new_index], axis=1).mean() / diagonal
+        lines.append(row("torus - stretched copy, 2 holes each", result,
+                         f" 16 true pairs; mean error {100 * error:.1f} % of the diagonal",
+                         medians(path_a, path_b, tmp + "/out")))
+        print(lines[-1], flush=True)
     lines += ["", *guide_sweep()]
     write_section("intersurface-genus-benchmark", lines)
 

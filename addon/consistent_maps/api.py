@@ -141,8 +141,8 @@ def prepare(objects):
 
 
 def _has_handles(report):
-    """Whether a mesh is one closed, clean surface of genus >= 1 (mapped onto a partner directly)."""
-    return (report["genus"] >= 1 and report["closed"] and report["manifold"] and report["components"] == 1
+    """Whether a mesh is one clean surface of genus >= 1, closed or with holes (mapped onto a partner directly)."""
+    return (report["genus"] >= 1 and report["manifold"] and report["components"] == 1
             and report["referenced_vertices"] == report["vertices"] and report["degenerate_faces"] == 0)
 
 

@@ -40,7 +40,7 @@ def consistent_spherical_parameterization(meshes, features, *, effort, seed, thr
 
 def intersurface_map(mesh_a, mesh_b, feature_pairs, *, effort, seed, threads, progress, restarts=1,
                      corner_images=False):
-    """The map between two closed meshes of equal genus (genus >= 1: through a consistent partition,
+    """The map between two meshes of equal genus, closed or with as many holes (genus >= 1: through a consistent partition,
     Schreiner et al.), each pair [vertex of A, vertex of B] exactly onto each other: a dict with per vertex
     of A its triangle of B and barycentric weights ('a_to_b_triangle', 'a_to_b_barycentric'), likewise
     'b_to_a_*', and 'genus', 'symmetric_dirichlet' (A to B, B to A), 'seconds'. Genus 0: the least

@@ -974,7 +974,7 @@ PYBIND11_MODULE(_native, m) {
         py::arg("feature_pairs") = py::list(), py::kw_only(), py::arg("grid") = 64, py::arg("optimize") = 2,
         py::arg("restarts") = 1, py::arg("corner_images") = false, py::arg("seed") = 1,
         py::arg("effort") = 1, py::arg("threads") = 2, py::arg("progress") = py::none(),
-        "Inter-surface map between two closed meshes of equal genus (genus 0: through a consistent spherical\n"
+        "Inter-surface map between two meshes of equal genus, closed or with as many holes (genus 0: through a consistent spherical\n"
         "parameterization of both; genus >= 1: through a consistent partition into triangular patches,\n"
         "'base_vertices' and 'base_triangles' of its base mesh, 'seconds_partition'). mesh_a, mesh_b: (vertices, triangles); feature_pairs: (k, 2)\n"
         "[vertex of A, vertex of B], mapped exactly onto each other (fewer than 3: pairs are added\n"

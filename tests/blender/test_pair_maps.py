@@ -140,6 +140,55 @@ def test_genus_one_pair_of_different_shapes_and_zero_features():
     assert (shape >= knot.min(axis=0) - 1e-5).all() and (shape <= knot.max(axis=0) + 1e-5).all()
 
 
+def _cut_holes(obj, vertices):
+    """Deletes the vertices (and their faces): one hole around each."""
+    import bmesh
+    bm = bmesh.new()
+    bm.from_mesh(obj.data)
+    bm.verts.ensure_lookup_table()
+    bmesh.ops.delete(bm, geom=[bm.verts[v] for v in vertices], context='VERTS')
+    bm.to_mesh(obj.data)
+    bm.free()
+    obj.data.update()
+
+
+def _rim_distance(points, mesh):
+    """Per point: its distance to the nearest boundary edge of the mesh."""
+    co = maps.positions(mesh)
+    faces_per_edge = {}
+    for polygon in mesh.polygons:
+        for key in polygon.edge_keys:
+            faces_per_edge[key] = faces_per_edge.get(key, 0) + 1
+    rim = np.array([key for key, count in faces_per_edge.items() if count == 1], int)
+    start, direction = co[rim[:, 0]], co[rim[:, 1]] - co[rim[:, 0]]
+    t = np.clip(((points[:, None] - start[None]) * direction[None]).sum(-1) / (direction ** 2).sum(-1)[None], 0, 1)
+    return np.linalg.norm(points[:, None] - (start[None] + t[..., None] * direction[None]), axis=-1).min(axis=1)
+
+
+def test_pair_with_holes_maps_rims_onto_rims():
+    """Tori of genus 1 with two holes each (the same vertices deleted): Compute pairs the holes, and the
+    morph puts every rim vertex on the partner's rim and follows the true correspondence."""
+    a = load(TORUS, "Holed")
+    b = load(TORUS, "Holed stretched", location=(4, 0, 0))
+    b.data.transform(STRETCH)
+    holes = _farthest(maps.positions(a.data), 2)
+    for obj in (a, b):
+        _cut_holes(obj, holes)
+    for index, vertex in enumerate(_farthest(maps.positions(a.data), 16)):
+        for obj in (a, b):
+            api.add_feature(obj, f"f{index}", vertex)
+    make_set([a, b])
+    api.compute([a, b], effort=0)
+    shape = _get(api.morph(a, b, align='none').data, "co", 3)
+    truth = maps.positions(b.data)
+    error = np.linalg.norm(shape - truth, axis=1).mean() / _diagonal(truth)
+    print(f"holed torus -> holed stretched torus, 16 true features: mean error {error:.4f} of the diagonal")
+    assert error < 0.03  # measured 0.6 % natively; unrelated vertices: ~30 %
+    on_rim = _rim_distance(maps.positions(a.data), a.data) < 1e-9
+    assert on_rim.sum() == 12  # two rings of 6
+    assert (_rim_distance(shape[on_rim], b.data) < 1e-5 * _diagonal(truth)).all()
+
+
 def test_pair_refuses_what_needs_a_sphere_and_mismatched_sets():
     a, b = _tori(features=3)
     before = [snapshot(a), snapshot(b)]

@@ -6,6 +6,8 @@
 
 #include <map>
 #include <set>
+#include <string>
+#include <tuple>
 
 #include "consistent_maps/errors.h"
 #include "consistent_maps/intersurface_map.h"
@@ -199,6 +201,94 @@ TEST(HigherGenusMap, StretchedCopyMatchesItsHandles) {
     std::printf("  %d pairs: mean error %.2f %% of the diagonal\n", count, 100 * error);
     EXPECT_LT(error, tolerance) << count << " pairs";
   }
+}
+
+// `mesh` without the triangles around each of `centres` (and without those
+// vertices): one hole per centre.
+TriangleMesh with_holes(const TriangleMesh& mesh, const std::vector<int>& centres) {
+  std::vector<int> index(mesh.vertices.size(), 0);
+  for (int c : centres) index[c] = -1;
+  TriangleMesh out;
+  for (int v = 0; v < int(mesh.vertices.size()); ++v)
+    if (index[v] >= 0) index[v] = int(out.vertices.size()), out.vertices.push_back(mesh.vertices[v]);
+  for (const Triangle& t : mesh.triangles)
+    if (index[t[0]] >= 0 && index[t[1]] >= 0 && index[t[2]] >= 0)
+      out.triangles.push_back({index[t[0]], index[t[1]], index[t[2]]});
+  return out;
+}
+
+// Per boundary edge (u, v) of `mesh`, both orders.
+std::set<std::pair<int, int>> boundary_edges(const TriangleMesh& mesh) {
+  std::map<std::pair<int, int>, int> count;
+  for (const Triangle& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) ++count[std::minmax(t[k], t[(k + 1) % 3])];
+  std::set<std::pair<int, int>> edges;
+  for (const auto& [e, n] : count)
+    if (n == 1) edges.insert(e), edges.insert({e.second, e.first});
+  return edges;
+}
+
+// Thesis 5.4, boundaries: a torus with two holes against its stretched,
+// re-indexed copy. Every rim vertex lands on the other mesh's rim (on a
+// boundary edge, nothing on the third corner), both ways, and the map
+// follows the true correspondence.
+TEST(HigherGenusMap, HolesMapOntoHolesAndRimsOntoRims) {
+  const TriangleMesh torus = read_mesh(shared_mesh("higher-genus/torus.obj"));
+  const std::vector<int> far = farthest_points(torus, 2);
+  const TriangleMesh a = with_holes(torus, far);
+  std::vector<int> new_index;
+  const TriangleMesh b = stretched_copy(a, Vec3(1.5, 1.0, 0.7), new_index);
+  const int n = int(a.vertices.size());
+  for (const auto& [count, tolerance] : {std::pair{0, 0.1}, {16, 0.03}}) {
+    std::vector<FeaturePair> pairs;
+    for (int v : farthest_points(a, count)) pairs.push_back({v, new_index[v]});
+    const IntersurfaceResult r = intersurface_map(a, b, pairs);
+    EXPECT_EQ(r.genus, 1);
+    expect_valid_points(r.a_to_b, b);
+    expect_valid_points(r.b_to_a, a);
+    expect_exact_features(r, a, b);
+    for (const auto& [source, target, images] :
+         {std::tuple<const TriangleMesh&, const TriangleMesh&, const std::vector<SurfacePoint>&>{a, b, r.a_to_b},
+          {b, a, r.b_to_a}}) {
+      const auto rim_source = boundary_edges(source), rim_target = boundary_edges(target);
+      std::set<int> on_rim, on_target_rim;
+      for (const auto& e : rim_source) on_rim.insert(e.first);
+      for (const auto& e : rim_target) on_target_rim.insert(e.first);
+      EXPECT_EQ(on_rim.size(), 12u);  // two rings of 6
+      for (int v : on_rim) {
+        const SurfacePoint& p = images[v];
+        const Triangle& t = target.triangles[p.triangle];
+        bool lands = false;  // on a boundary edge (nothing on the third corner) or at a rim vertex
+        for (int k = 0; k < 3; ++k)
+          lands |= (p.barycentric[k] < 1e-9 && rim_target.count({t[(k + 1) % 3], t[(k + 2) % 3]})) ||
+                   (p.barycentric[k] > 1 - 1e-9 && on_target_rim.count(t[k]));
+        EXPECT_TRUE(lands) << "rim vertex " << v << " lands off the other rim";
+      }
+    }
+    double error = 0;
+    for (int v = 0; v < n; ++v) error += (r.a_on_b[v] - b.vertices[new_index[v]]).norm();
+    error /= n * diagonal(b);
+    std::printf("  %d pairs: mean error %.2f %% of the diagonal\n", count, 100 * error);
+    EXPECT_LT(error, tolerance) << count << " pairs";  // unrelated vertices: about 30 %
+  }
+  // A pair joining a rim vertex to a vertex on no rim: refused.
+  std::set<int> rim;
+  for (const auto& e : boundary_edges(a)) rim.insert(e.first);
+  int inner = 0;
+  while (rim.count(inner)) ++inner;
+  EXPECT_THROW(intersurface_map(a, b, {{*rim.begin(), new_index[inner]}}), InvalidInput);
+  // As many holes on both, or a clear error.
+  const TriangleMesh one_hole = with_holes(torus, {far[0]});
+  EXPECT_THROW(
+      {
+        try {
+          intersurface_map(a, one_hole, {});
+        } catch (const InvalidInput& e) {
+          EXPECT_NE(std::string(e.what()).find("A has 2 holes, B has 1"), std::string::npos) << e.what();
+          throw;
+        }
+      },
+      InvalidInput);
 }
 
 // Corner images, both ways, of a copy with its vertices reordered, its

@@ -159,6 +159,42 @@ def test_genus_one_map(native):
     assert r["seconds_partition"] > 0
 
 
+def holed(mesh, centres):
+    """The mesh without the triangles around each of `centres` (and without those vertices)."""
+    vertices, triangles = mesh
+    keep = np.ones(len(vertices), bool)
+    keep[list(centres)] = False
+    index = np.cumsum(keep) - 1
+    return vertices[keep], index[triangles[keep[triangles].all(axis=1)]]
+
+
+def rim_vertices(triangles):
+    edges = np.sort(np.concatenate([triangles[:, [0, 1]], triangles[:, [1, 2]], triangles[:, [2, 0]]]), axis=1)
+    unique, count = np.unique(edges, axis=0, return_counts=True)
+    return set(unique[count == 1].ravel().tolist())
+
+
+def test_genus_one_with_holes(native):
+    """A torus with two holes against a knot with two: holes pair, each rim maps onto the other's rim (its
+    vertices' images have all their weight on the other mesh's rim vertices), added rim pairs are listed."""
+    torus, knot = native.read_mesh(str(TORUS)), native.read_mesh(str(KNOT))
+    a, b = holed(torus, [0, 1000]), holed(knot, [0, 700])
+    r = native.intersurface_map(a, b, [], corner_images=True)
+    assert r["genus"] == 1 and r["added_features"] >= 6  # 3 or more on each of the 2 rims
+    expect_valid(r["a_to_b_triangle"], r["a_to_b_barycentric"], b[1])
+    expect_valid(r["b_to_a_triangle"], r["b_to_a_barycentric"], a[1])
+    expect_valid_corners(r, a, b)
+    expect_exact(r, a, b)
+    for (source, target, side) in [(a, b, "a_to_b"), (b, a, "b_to_a")]:
+        rim, other = rim_vertices(source[1]), rim_vertices(target[1])
+        for v in rim:
+            corners = target[1][r[f"{side}_triangle"][v]]
+            weights = r[f"{side}_barycentric"][v]
+            assert weights[[c not in other for c in corners]].sum() < 1e-9, f"rim vertex {v} lands off the rim"
+    with pytest.raises(native.InvalidMeshError, match="A has 2 holes, B has 1; an inter-surface map needs as many"):
+        native.intersurface_map(a, holed(knot, [0]), [])
+
+
 def test_errors(native):
     torus, spot = native.read_mesh(str(TORUS)), native.read_mesh(str(SPOT))
     with pytest.raises(native.InvalidMeshError, match="A has genus 1, B has genus 0; an inter-surface map needs equal genus"):

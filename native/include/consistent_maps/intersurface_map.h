@@ -1,4 +1,5 @@
-// Inter-surface maps between two closed meshes of the same genus (issue 5):
+// Inter-surface maps between two meshes of the same genus (issue 5), closed
+// or with as many holes on both:
 // for every vertex of A its image on B (an input triangle of B and
 // barycentric weights) and vice versa, with corresponding feature vertices
 // mapped exactly onto each other.
@@ -39,6 +40,12 @@
 // bijective; A's embedding is locally optimized (no progressive-mesh
 // refinement). With zero pairs, one pair is chosen: A's vertex farthest from
 // its centroid and B's vertex nearest it with centroids and areas matched.
+// Holes (thesis 5.4, boundaries): each is closed by a fan around a temporary
+// centre, holes are paired (by pairs on their rims, else by nearest centres
+// in A's frame), each rim pair gets at least 3 corresponding features, and
+// the rims and spokes to the centres are laid before any other path; so a
+// hole maps onto its partner and a rim onto its partner rim
+// (intersurface/hole_rims.h).
 #pragma once
 #include <array>
 #include <vector>

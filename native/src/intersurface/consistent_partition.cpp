@@ -53,13 +53,27 @@ struct Walk {
 
 class Side {
  public:
-  explicit Side(const TriangleMesh& mesh) : mesh(mesh), blocked(this->mesh.vertex_count(), 0) {}
+  Side(const TriangleMesh& mesh, int first_fan)
+      : mesh(mesh), first_fan(first_fan), blocked(this->mesh.vertex_count(), 0) {}
 
   EditableMesh mesh;
+  int first_fan;              // triangles refined from input triangles at or past this fill a hole
   std::vector<char> blocked;  // features and path vertices
   std::unordered_set<int> path_edges;
   std::vector<int> feature;
   std::vector<std::vector<int>> paths;
+
+  bool fan(int f) const { return mesh.input_triangle(f) >= first_fan; }
+
+  // Regions (see regions()) that hold surface, not a hole's fan.
+  int surface_regions() const {
+    int count = 0;
+    const std::vector<int> region = regions(count);
+    std::vector<char> surface(count, 0);
+    for (int f = 0; f < int(region.size()); ++f)
+      if (!fan(f)) surface[region[f]] = 1;
+    return int(std::count(surface.begin(), surface.end(), 1));
+  }
 
   void add_feature(int v) {
     feature.push_back(v);
@@ -246,15 +260,18 @@ class Side {
 
 class Partitioner {
  public:
-  Partitioner(const TriangleMesh& a, const TriangleMesh& b, const std::vector<std::array<int, 2>>& features, int genus)
-      : genus_(genus), guide_(pair_positions(a, features, 0), pair_positions(b, features, 1), a, b) {
-    sides_.emplace_back(a);
-    sides_.emplace_back(b);
+  Partitioner(const TriangleMesh& a, const TriangleMesh& b, const std::vector<std::array<int, 2>>& features, int genus,
+              const PartitionHoles& holes)
+      : genus_(genus), guide_(pair_positions(a, features, 0), pair_positions(b, features, 1), a, b), holes_(holes) {
+    const bool fans = !holes.rims.empty();
+    sides_.emplace_back(a, fans ? holes.first_fan[0] : int(a.triangles.size()));
+    sides_.emplace_back(b, fans ? holes.first_fan[1] : int(b.triangles.size()));
     for (int s = 0; s < 2; ++s) scale_[s] = std::sqrt(std::max(surface_area(s == 0 ? a : b), 1e-300));
     for (const auto& f : features) add_pair(f[0], f[1]);
   }
 
   ConsistentPartition run() {
+    seed_holes();
     tree();
     handles();
     complete();
@@ -347,6 +364,46 @@ class Partitioner {
     edges_.push_back({i, j});
   }
 
+  // Phase 0, with holes: each rim between its features and a spoke from its
+  // centre to each, on both meshes alike; each hole's fan is then cut into
+  // triangles of three features that no later path enters (the fan's
+  // vertices are all blocked and its faces closed).
+  void seed_holes() {
+    std::unordered_map<int, int> feature_of;  // A's vertex -> feature
+    for (int f = 0; f < int(sides_[0].feature.size()); ++f) feature_of[sides_[0].feature[f]] = f;
+    const auto feature = [&](int v) {
+      const auto it = feature_of.find(v);
+      if (it == feature_of.end()) throw Error("internal error: a rim feature or hole centre is no feature");
+      return it->second;
+    };
+    for (const HoleRim& rim : holes_.rims) {
+      const int centre = feature(rim.centre[0]), k = int(rim.features.size());
+      centres_.push_back(centre);
+      for (int i = 0; i < k; ++i) {
+        const int from = feature(rim.features[i][0]), to = feature(rim.features[(i + 1) % k][0]);
+        for (int s = 0; s < 2; ++s) {
+          const std::vector<int>& loop = rim.loop[s];
+          const int n = int(loop.size());
+          int at = int(std::find(loop.begin(), loop.end(), rim.features[i][s]) - loop.begin());
+          std::vector<int> path{loop[at]};
+          do {
+            at = (at + 1) % n;
+            path.push_back(loop[at]);
+          } while (loop[at] != rim.features[(i + 1) % k][s]);
+          sides_[s].register_path(path);
+        }
+        edges_.push_back({from, to});
+      }
+      for (int i = 0; i < k; ++i) {
+        for (int s = 0; s < 2; ++s) sides_[s].register_path({rim.centre[s], rim.features[i][s]});
+        edges_.push_back({centre, feature(rim.features[i][0])});
+      }
+      seeded_cycles_ += k;  // k rim paths and k spokes among k + 1 features
+    }
+  }
+
+  bool is_centre(int f) const { return std::find(centres_.begin(), centres_.end(), f) != centres_.end(); }
+
   // Phase 1: a spanning tree of the features.
   void tree() {
     const int k = int(sides_[0].feature.size());
@@ -365,8 +422,10 @@ class Partitioner {
     std::iota(root.begin(), root.end(), 0);
     const std::function<int(int)> find = [&](int x) { return root[x] == x ? x : root[x] = find(root[x]); };
     int components = k;
+    for (const auto& e : edges_)  // the seeded holes
+      if (find(e[0]) != find(e[1])) root[find(e[0])] = find(e[1]), --components;
     for (const auto& [c, pair] : candidates) {
-      if (find(pair[0]) == find(pair[1])) continue;
+      if (find(pair[0]) == find(pair[1]) || is_centre(pair[0]) || is_centre(pair[1])) continue;
       if (!connect(pair[0], pair[1], {Attach::kMatch, {}}, {Attach::kMatch, {}})) continue;
       root[find(pair[0])] = find(pair[1]);
       --components;
@@ -411,17 +470,21 @@ class Partitioner {
 
   void require_one_region() const {
     for (int s = 0; s < 2; ++s) {
-      int count = 0;
-      sides_[s].regions(count);
-      if (count != 1)
+      if (sides_[s].surface_regions() != 1)
         throw Error(std::string("internal error: a non-separating path separates ") + (s == 0 ? "A" : "B"));
     }
   }
 
-  // Phase 2: 2g non-separating paths.
+  // Phase 2: 2g non-separating paths (the seeded holes' cycles bound their fans).
   void handles() {
-    while (int(edges_.size()) - int(sides_[0].feature.size()) + 1 < 2 * genus_) {
-      const std::vector<Walk> all = walks();
+    while (int(edges_.size()) - int(sides_[0].feature.size()) + 1 - seeded_cycles_ < 2 * genus_) {
+      std::vector<Walk> all = walks();
+      all.erase(std::remove_if(all.begin(), all.end(),
+                               [&](const Walk& w) {
+                                 return std::any_of(w.corners.begin(), w.corners.end(),
+                                                    [&](const Corner& c) { return is_centre(c.feature); });
+                               }),
+                all.end());
       if (all.size() >= 2) {
         join(all);
       } else {
@@ -571,7 +634,9 @@ class Partitioner {
       const int edges = side.mesh.edge_count();
       for (int e = 0; e < edges; ++e) {
         const auto [u, w] = side.mesh.edge_vertices(e);
-        if (u >= 0 && side.blocked[u] && side.blocked[w] && !side.path_edges.count(e)) side.split(e);
+        if (u >= 0 && side.blocked[u] && side.blocked[w] && !side.path_edges.count(e) &&
+            !side.fan(side.mesh.edge_faces(e)[0]))
+          side.split(e);
       }
     }
     throw Error(std::string("no non-separating cycle found on ") + (s == 0 ? "A" : "B"));
@@ -601,7 +666,8 @@ class Partitioner {
     }
     const int p = add_pair(cycle[0].front(), cycle[1].front());
     std::vector<std::pair<double, int>> targets;
-    for (int f = 0; f < p; ++f) targets.push_back({cost(p, f), f});
+    for (int f = 0; f < p; ++f)
+      if (!is_centre(f)) targets.push_back({cost(p, f), f});
     std::sort(targets.begin(), targets.end());
     bool joined = false;
     for (const auto& [c, f] : targets)
@@ -785,7 +851,7 @@ class Partitioner {
         if (slot >= 0) throw Error("internal error: two base triangles share a region");
         slot = t;
       }
-      PartitionSide out{std::move(side.mesh), side.feature, side.paths, {}};
+      PartitionSide out{std::move(side.mesh), side.first_fan, side.feature, side.paths, {}};
       for (int r : region) out.patch.push_back(triangle_of[r]);
       result.sides.push_back(std::move(out));
     }
@@ -794,6 +860,9 @@ class Partitioner {
 
   int genus_;
   PathGuide guide_;
+  const PartitionHoles& holes_;
+  std::vector<int> centres_;  // features at hole centres
+  int seeded_cycles_ = 0;
   std::vector<Side> sides_;
   double scale_[2] = {1, 1};
   std::vector<std::array<int, 2>> edges_;
@@ -802,9 +871,10 @@ class Partitioner {
 }  // namespace
 
 ConsistentPartition consistent_partition(const TriangleMesh& a, const TriangleMesh& b,
-                                         const std::vector<std::array<int, 2>>& features, int genus) {
+                                         const std::vector<std::array<int, 2>>& features, int genus,
+                                         const PartitionHoles& holes) {
   if (features.empty()) throw InvalidInput("a consistent partition needs at least one feature pair");
-  Partitioner partitioner(a, b, features, genus);
+  Partitioner partitioner(a, b, features, genus, holes);
   ConsistentPartition result = partitioner.run();
   result.given_features = int(features.size());
   return result;

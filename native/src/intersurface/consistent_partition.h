@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "consistent_maps/mesh.h"
+#include "intersurface/hole_rims.h"
 #include "paths/editable_mesh.h"
 
 namespace cmaps {
@@ -37,6 +38,7 @@ namespace cmaps {
 // One mesh of the partition, refined by its Steiner vertices.
 struct PartitionSide {
   EditableMesh mesh;
+  int input_triangles = 0;               // refined from input triangles at or past this: a hole's temporary fan
   std::vector<int> feature_vertex;       // per base vertex: its mesh vertex
   std::vector<std::vector<int>> paths;   // per base edge: mesh vertices from its first base vertex to its second
   std::vector<int> patch;                // per mesh triangle: its base triangle
@@ -57,10 +59,19 @@ struct ConsistentPartition {
   int given_features = 0;                  // base vertices 0 .. given - 1 are the caller's pairs
 };
 
+// Meshes with holes, closed by fans (intersurface/hole_rims.h): each rim is
+// laid between its features, and a spoke from the centre to each, before
+// anything else; every rim feature and centre must be among the features.
+struct PartitionHoles {
+  std::vector<HoleRim> rims;
+  std::array<int, 2> first_fan{0, 0};  // per mesh: its first fan triangle (the input's triangle count)
+};
+
 // `features` are pairs of mesh vertices (A's, B's), at least one. Both
-// meshes must be closed, manifold and oriented alike. Throws Error when the
-// construction gets stuck.
+// meshes must be closed (holes fanned, see `holes`), manifold and oriented
+// alike. Throws Error when the construction gets stuck.
 ConsistentPartition consistent_partition(const TriangleMesh& a, const TriangleMesh& b,
-                                         const std::vector<std::array<int, 2>>& features, int genus);
+                                         const std::vector<std::array<int, 2>>& features, int genus,
+                                         const PartitionHoles& holes = {});
 
 }  // namespace cmaps

@@ -26,6 +26,7 @@
 #include "intersurface/patch_map_optimization.h"
 #include "intersurface/patch_parameterization.h"
 #include "intersurface/path_guide.h"
+#include "intersurface/hole_rims.h"
 
 namespace cmaps {
 namespace {
@@ -45,14 +46,14 @@ ProgressCallback slice(const ProgressCallback& progress, double begin, double en
 // TopologyError naming the mesh (`name` is "A" or "B") otherwise.
 int checked_genus(const TriangleMesh& mesh, const std::string& name) {
   const MeshReport r = check_mesh(mesh);
-  const bool usable = r.vertices > 0 && r.genus >= 0 && r.manifold() && (r.closed() || r.genus == 0) &&
+  const bool usable = r.vertices > 0 && r.genus >= 0 && r.manifold() &&
                       r.components == 1 && r.referenced_vertices == r.vertices &&
                       r.inconsistently_oriented_edges == 0 && r.non_finite_vertices == 0 &&
                       r.out_of_range_indices == 0;
   if (!usable)
     throw TopologyError(name + ": mesh has " + summarize(r) +
-                        "; an inter-surface map needs one manifold, consistently oriented surface, closed or (genus "
-                        "0 only) with holes");
+                        "; an inter-surface map needs one manifold, consistently oriented surface (closed or with "
+                        "separate holes)");
   return r.genus;
 }
 
@@ -305,22 +306,38 @@ void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, Intersurf
   const int given = int(result.features.size());
   std::vector<std::array<int, 2>> pairs;
   for (const FeaturePair& f : result.features) pairs.push_back({f.a, f.b});
-  if (pairs.empty()) {
+  // Holes are closed by fans; paths keep cyclic orders by each mesh's own
+  // orientation: B is turned like A (its input triangle indices stay, only
+  // corner order flips).
+  const ClosedMesh closed_a = close_holes(a, /*any_genus=*/true), closed_b = close_holes(b, /*any_genus=*/true);
+  if (pairs.empty() && closed_a.loops.empty()) {
     // A's vertex farthest from its centroid, and B's nearest to it with the
     // centroids and areas matched (meshes posed alike get a matching pair).
+    // Holes bring their own pairs on their rims.
     const int far_a = farthest_from_centroid(a);
     pairs.push_back({far_a, PathGuide({}, {}, a, b).nearest(a.vertices[far_a], b.vertices)});
   }
+  TriangleMesh b_like_a = closed_b.mesh;
+  const bool turned = signed_volume(closed_a.mesh) * signed_volume(closed_b.mesh) < 0;
+  if (turned)
+    for (Triangle& t : b_like_a.triangles) std::swap(t[1], t[2]);
+  PartitionHoles holes;
+  if (!closed_a.loops.empty() || !closed_b.loops.empty()) {
+    std::vector<Vec3> on_a, on_b;
+    for (const auto& p : pairs) on_a.push_back(a.vertices[p[0]]), on_b.push_back(b.vertices[p[1]]);
+    holes.rims = pair_hole_rims(closed_a, closed_b, pairs, turned, PathGuide(on_a, on_b, a, b));
+    holes.first_fan = {closed_a.input_triangles, closed_b.input_triangles};
+    for (const HoleRim& rim : holes.rims) {
+      for (const auto& f : rim.features)
+        if (std::find(pairs.begin(), pairs.end(), f) == pairs.end()) pairs.push_back(f);
+      pairs.push_back(rim.centre);
+    }
+  }
   result.seconds_features = seconds_since(stage);
 
-  // Paths keep cyclic orders by each mesh's own orientation: B is turned
-  // like A first (its input triangle indices stay, only corner order flips).
   stage = Clock::now();
   if (progress && !progress(0.05, "partitioning")) throw Cancelled();
-  TriangleMesh b_like_a = b;
-  if (signed_volume(a) * signed_volume(b) < 0)
-    for (Triangle& t : b_like_a.triangles) std::swap(t[1], t[2]);
-  ConsistentPartition partition = consistent_partition(a, b_like_a, pairs, result.genus);
+  ConsistentPartition partition = consistent_partition(closed_a.mesh, b_like_a, pairs, result.genus, holes);
   result.seconds_partition = seconds_since(stage);
 
   stage = Clock::now();
@@ -345,11 +362,21 @@ void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, Intersurf
     return points;
   };
   const PartitionSide &side_a = partition.sides[0], &side_b = partition.sides[1];
-  result.a_to_b = convert(map_vertices(side_a, uv_a, side_b, uv_b, b, threads));
-  result.b_to_a = convert(map_vertices(side_b, uv_b, side_a, uv_a, a, threads));
+  const TriangleMesh &ca = closed_a.mesh, &cb = closed_b.mesh;
+  // The surfaces' own points only (no hole centre, no fan corner); none lands in a fan.
+  const auto surface_only = [&](std::vector<SurfacePoint> points, std::size_t count, const TriangleMesh& target) {
+    points.resize(count);
+    for (const SurfacePoint& p : points)
+      if (p.triangle >= int(target.triangles.size())) throw Error("internal error: a surface point maps into a hole");
+    return points;
+  };
+  result.a_to_b = surface_only(convert(map_vertices(side_a, uv_a, side_b, uv_b, cb, threads)), a.vertices.size(), b);
+  result.b_to_a = surface_only(convert(map_vertices(side_b, uv_b, side_a, uv_a, ca, threads)), b.vertices.size(), a);
   if (options.corner_images) {
-    result.a_corners_to_b = convert(map_corners(side_a, uv_a, side_b, uv_b, a, b, threads));
-    result.b_corners_to_a = convert(map_corners(side_b, uv_b, side_a, uv_a, b, a, threads));
+    result.a_corners_to_b =
+        surface_only(convert(map_corners(side_a, uv_a, side_b, uv_b, ca, cb, threads)), 3 * a.triangles.size(), b);
+    result.b_corners_to_a =
+        surface_only(convert(map_corners(side_b, uv_b, side_a, uv_a, cb, ca, threads)), 3 * b.triangles.size(), a);
   }
   result.a_on_b = surface_positions(b, result.a_to_b);
   result.b_on_a = surface_positions(a, result.b_to_a);
@@ -363,8 +390,8 @@ void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, Intersurf
   result.added_features = int(result.features.size()) - given;
   result.base_vertices = int(fa.size());
   result.base_triangles = int(partition.triangles.size());
-  result.steiner_a = partition.sides[0].mesh.vertex_count() - int(a.vertices.size());
-  result.steiner_b = partition.sides[1].mesh.vertex_count() - int(b.vertices.size());
+  result.steiner_a = partition.sides[0].mesh.vertex_count() - int(ca.vertices.size());
+  result.steiner_b = partition.sides[1].mesh.vertex_count() - int(cb.vertices.size());
 }
 
 // Vertices no triangle uses (the teapot has 4) carry no surface: the map is

@@ -87,13 +87,14 @@ class PatchEnergy {
       : source_(source), uv_(uv), target_(target), target_uv_(target_uv), scale_(scale) {
     target_locator_ = std::make_unique<PatchLocator>(target, target_uv, target_faces);
     const PatchLocator onto_source(source, uv, faces);
+    // A hole's temporary fan keeps its embedding valid but weighs nothing.
     for (int f : faces) {
-      shape_[f] = shape_of(source, f);
+      shape_[f] = source.mesh.input_triangle(f) < source.input_triangles ? shape_of(source, f) : Shape{};
       for (int v : source.mesh.triangles()[f])
         if (!image_.count(v)) image_[v] = locate(*target_locator_, target, uv.at(v), scale);
     }
     for (int g : target_faces) {
-      back_shape_[g] = shape_of(target, g);
+      back_shape_[g] = target.mesh.input_triangle(g) < target.input_triangles ? shape_of(target, g) : Shape{};
       for (int w : target.mesh.triangles()[g])
         if (!back_image_.count(w)) {
           const auto [f, weights] = onto_source.locate(target_uv.at(w));

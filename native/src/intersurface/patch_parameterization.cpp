@@ -253,14 +253,18 @@ std::vector<InputLocation> map_vertices(const PartitionSide& source, const Patch
   const int n = source.mesh.input_vertex_count();
   std::vector<std::pair<int, Vec2>> points(n);
   for (int v = 0; v < n; ++v) {
-    const int t = source.patch[source.mesh.faces_of(v).front()];
+    // A rim vertex maps through the surface's patch beside it, not the hole's fan.
+    const std::vector<int>& faces = source.mesh.faces_of(v);
+    const auto surface = std::find_if(faces.begin(), faces.end(),
+                                      [&](int f) { return source.mesh.input_triangle(f) < source.input_triangles; });
+    const int t = source.patch[surface != faces.end() ? *surface : faces.front()];
     points[v] = {t, source_uv.uv[t].at(v)};
   }
   std::vector<InputLocation> image = locate_canonical(target, target_uv, target_input, points, threads);
 
   // Features exactly onto their partners.
   std::vector<int> incident(target_input.vertices.size(), -1);
-  for (int t = 0; t < int(target_input.triangles.size()); ++t)
+  for (int t = 0; t < int(target_input.triangles.size()); ++t)  // surface triangles before fan triangles
     for (int v : target_input.triangles[t])
       if (incident[v] < 0) incident[v] = t;
   for (size_t f = 0; f < source.feature_vertex.size(); ++f) {

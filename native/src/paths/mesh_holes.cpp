@@ -9,19 +9,20 @@
 
 namespace cmaps {
 
-ClosedMesh close_holes(const TriangleMesh& mesh) {
+ClosedMesh close_holes(const TriangleMesh& mesh, bool any_genus) {
   ClosedMesh closed;
   closed.mesh = mesh;
   closed.input_vertices = static_cast<int>(mesh.vertices.size());
   closed.input_triangles = static_cast<int>(mesh.triangles.size());
   const MeshReport report = check_mesh(mesh);
+  const bool usable = report.manifold() && report.inconsistently_oriented_edges == 0 && report.components == 1 &&
+                      report.out_of_range_indices == 0 && report.non_finite_vertices == 0;
+  if (any_genus && !usable) throw TopologyError("mesh has " + summarize(report) + "; it must be one manifold, consistently oriented surface");
   if (report.boundary_loops == 0) {
-    require_sphere_topology(mesh);
+    if (!any_genus) require_sphere_topology(mesh);
     return closed;
   }
-  if (!report.manifold() || report.inconsistently_oriented_edges > 0 || report.components != 1 ||
-      report.out_of_range_indices > 0 || report.non_finite_vertices > 0)
-    require_sphere_topology(mesh);  // names the defect
+  if (!usable) require_sphere_topology(mesh);  // names the defect
   // Boundary half-edges u -> v (no v -> u): the fan triangle runs v -> u.
   std::map<std::pair<int, int>, int> half_edges;
   for (const Triangle& t : mesh.triangles)
@@ -31,7 +32,7 @@ ClosedMesh close_holes(const TriangleMesh& mesh) {
     if (!half_edges.count({e.second, e.first})) {
       if (!next.emplace(e.second, e.first).second)
         throw TopologyError("mesh has a vertex (" + std::to_string(e.second) +
-                            ") where two boundary loops touch; spherical parameterization needs separate holes");
+                            ") where two boundary loops touch; holes must be separate");
     }
   std::vector<int> starts;
   for (const auto& [v, w] : next) starts.push_back(v);
@@ -55,6 +56,7 @@ ClosedMesh close_holes(const TriangleMesh& mesh) {
     const int c = closed.centre(static_cast<int>(h));
     for (size_t j = 0; j < loop.size(); ++j) closed.mesh.triangles.push_back({c, loop[j], loop[(j + 1) % loop.size()]});
   }
+  if (any_genus) return closed;
   try {
     require_sphere_topology(closed.mesh);
   } catch (const TopologyError& e) {

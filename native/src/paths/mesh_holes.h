@@ -21,8 +21,9 @@ struct ClosedMesh {
 
 // The mesh itself when it is closed; otherwise every boundary loop fanned to
 // a centre at the loop's centroid. Throws TopologyError when the mesh (open
-// or not) is not a manifold, consistently oriented genus-0 surface with holes.
-ClosedMesh close_holes(const TriangleMesh& mesh);
+// or not) is not a manifold, consistently oriented genus-0 surface with holes
+// (with `any_genus`, of any genus: inter-surface maps of genus >= 1).
+ClosedMesh close_holes(const TriangleMesh& mesh, bool any_genus = false);
 
 // Per hole: the indices into `features` of the features on its loop, in
 // loop order. Throws InvalidInput when a hole has fewer than 3 of them; the
