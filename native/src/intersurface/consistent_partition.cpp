@@ -713,9 +713,11 @@ class Partitioner {
     edges_.push_back({q, p});
   }
 
-  // The unblocked vertex of side s in `region` farthest from its boundary,
-  // splitting an edge of the region when it has none.
-  int centre(int s, const std::vector<int>& region, int r) {
+  // The unblocked vertex of side s in `region` farthest from its boundary
+  // or, with `near` (a position on A), the one nearest it in A's frame (so
+  // B's new feature lies where A's does); an edge of the region is split
+  // when it has none.
+  int centre(int s, const std::vector<int>& region, int r, const Vec3* near = nullptr) {
     Side& side = sides_[s];
     for (int attempt = 0; attempt < 2; ++attempt) {
       std::vector<char> inside(side.mesh.vertex_count(), 0);
@@ -730,9 +732,14 @@ class Partitioner {
       std::vector<int> parent;
       side.dijkstra(sources, &inside, dist, parent);
       int best = -1;
+      std::vector<int> free;
+      std::vector<Vec3> positions;
       for (int v = 0; v < side.mesh.vertex_count(); ++v)
-        if (inside[v] && !side.blocked[v] && std::isfinite(dist[v]) && (best < 0 || dist[v] > dist[best])) best = v;
-      if (best >= 0) return best;
+        if (inside[v] && !side.blocked[v] && std::isfinite(dist[v])) {
+          free.push_back(v), positions.push_back(side.mesh.position(v));
+          if (best < 0 || dist[v] > dist[best]) best = v;
+        }
+      if (best >= 0) return near ? free[guide_.nearest(*near, positions)] : best;
       int longest = -1;
       double length = -1;
       for (int f = 0; f < int(region.size()); ++f)
@@ -771,7 +778,13 @@ class Partitioner {
         for (int s = 0; s < 2; ++s) {
           int count = 0;
           const std::vector<int> region = sides_[s].regions(count);
-          v[s] = centre(s, region, region[sides_[s].corner_face(walk.corners[0].feature, corner_ends[0])]);
+          const int r = region[sides_[s].corner_face(walk.corners[0].feature, corner_ends[0])];
+          if (s == 0) {
+            v[0] = centre(0, region, r);
+          } else {
+            const Vec3 on_a = sides_[0].mesh.position(v[0]);
+            v[1] = centre(1, region, r, &on_a);
+          }
         }
         const int c = add_pair(v[0], v[1]);
         for (size_t k = 0; k < walk.corners.size(); ++k)
