@@ -527,9 +527,12 @@ class Partitioner {
     std::vector<char> tree(edges, 0), cotree(edges, 0);
     for (int v = 0; v < side.mesh.vertex_count(); ++v)
       if (parent[v] >= 0) tree[side.mesh.edge(v, parent[v])] = 1;
-    // Cotree: a spanning tree of the faces across non-path, non-tree
-    // edges, those with a path vertex first, so that as few edges between
-    // free vertices as possible are used up (Kruskal with weights 0 / 1).
+    // Cotree: a maximum spanning tree of the faces across non-path,
+    // non-tree edges, weighted by the length of the loop each edge closes
+    // with the tree (Erickson & Whittlesey 2005): the edges left over then
+    // close the shortest loops, among them the shortest non-separating one
+    // through the root. Edges at a path vertex close no usable loop and go
+    // into the cotree first.
     const int faces = int(side.mesh.triangles().size());
     std::vector<int> group(faces);
     std::iota(group.begin(), group.end(), 0);
@@ -537,18 +540,22 @@ class Partitioner {
       while (group[x] != x) x = group[x] = group[group[x]];
       return x;
     };
-    for (int interior = 0; interior < 2; ++interior)
-      for (int e = 0; e < edges; ++e) {
-        const auto [u, w] = side.mesh.edge_vertices(e);
-        if (u < 0 || tree[e] || side.path_edges.count(e)) continue;
-        if ((!side.blocked[u] && !side.blocked[w]) != bool(interior)) continue;
-        const auto& two = side.mesh.edge_faces(e);
-        const int x = find(two[0]), y = find(two[1]);
-        if (x != y) {
-          group[x] = y;
-          cotree[e] = 1;
-        }
+    std::vector<std::pair<double, int>> order;
+    for (int e = 0; e < edges; ++e) {
+      const auto [u, w] = side.mesh.edge_vertices(e);
+      if (u < 0 || tree[e] || side.path_edges.count(e)) continue;
+      const bool usable = !side.blocked[u] && !side.blocked[w] && std::isfinite(dist[u]) && std::isfinite(dist[w]);
+      order.push_back({usable ? dist[u] + dist[w] + side.step(u, w, weights) : kInf, e});
+    }
+    std::sort(order.begin(), order.end(), std::greater<>());
+    for (const auto& [length, e] : order) {
+      const auto& two = side.mesh.edge_faces(e);
+      const int x = find(two[0]), y = find(two[1]);
+      if (x != y) {
+        group[x] = y;
+        cotree[e] = 1;
       }
+    }
     std::vector<int> depth(side.mesh.vertex_count(), -1);
     const auto depth_of = [&](int v) {
       std::vector<int> chain;

@@ -14,6 +14,45 @@ constexpr double kPull = 4;           // factor growth per sqrt(area) of distanc
 constexpr int kAffinePairs = 4;       // fewer pairs: a similarity (3) or centroids and areas
 constexpr double kMaxAnisotropy = 4;  // an affine fit stretching more than this is not trusted
 constexpr int kGuidePoints = 64;      // segments of the coarse polyline searched first
+constexpr int kClosestSamples = 1500;  // vertices of each mesh matched per round of closest points
+constexpr int kClosestRounds = 20;
+
+// Every k-th vertex, at most about kClosestSamples of them.
+std::vector<Vec3> samples(const TriangleMesh& mesh) {
+  const std::size_t step = std::max<std::size_t>(1, mesh.vertices.size() / kClosestSamples);
+  std::vector<Vec3> out;
+  for (std::size_t i = 0; i < mesh.vertices.size(); i += step) out.push_back(mesh.vertices[i]);
+  return out;
+}
+
+int nearest_index(const Vec3& p, const std::vector<Vec3>& points) {
+  int best = 0;
+  double d = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < int(points.size()); ++i)
+    if ((points[i] - p).squaredNorm() < d) d = (points[i] - p).squaredNorm(), best = i;
+  return best;
+}
+
+// The affine map [x 1] M = y of least weighted squares; false when it
+// mirrors or stretches more than kMaxAnisotropy.
+bool fit_affine(const std::vector<Vec3>& x, const std::vector<Vec3>& y, const std::vector<double>& weight,
+                Eigen::Affine3d& result) {
+  const int n = int(x.size());
+  Eigen::MatrixXd lhs(n, 4), rhs(n, 3);
+  for (int i = 0; i < n; ++i) {
+    lhs.row(i) << weight[i] * x[i].transpose(), weight[i];
+    rhs.row(i) = weight[i] * y[i].transpose();
+  }
+  const Eigen::MatrixXd m = lhs.colPivHouseholderQr().solve(rhs);
+  const Eigen::Matrix3d linear = m.topRows(3).transpose();
+  const Eigen::Vector3d sv = linear.jacobiSvd().singularValues();
+  if (!m.allFinite() || linear.determinant() <= 0 || !(sv.minCoeff() > 0) ||
+      sv.maxCoeff() >= kMaxAnisotropy * sv.minCoeff())
+    return false;
+  result.linear() = linear;
+  result.translation() = m.row(3).transpose();
+  return true;
+}
 
 Vec3 centroid(const std::vector<Vec3>& points) {
   Vec3 c = Vec3::Zero();
@@ -38,22 +77,9 @@ PathGuide::PathGuide(const std::vector<Vec3>& on_a, const std::vector<Vec3>& on_
   Eigen::Matrix3Xd from(3, n), to(3, n);
   for (int i = 0; i < n; ++i) from.col(i) = on_b[i], to.col(i) = on_a[i];
   bool fitted = false;
-  if (n >= kAffinePairs) {
-    // Least squares [x_b 1] M = x_a.
-    Eigen::MatrixXd lhs(n, 4), rhs(n, 3);
-    for (int i = 0; i < n; ++i) {
-      lhs.row(i) << on_b[i].transpose(), 1.0;
-      rhs.row(i) = on_a[i].transpose();
-    }
-    const Eigen::MatrixXd m = lhs.colPivHouseholderQr().solve(rhs);
-    const Eigen::Matrix3d linear = m.topRows(3).transpose();
-    const Eigen::Vector3d sv = linear.jacobiSvd().singularValues();
-    if (linear.determinant() > 0 && sv.minCoeff() > 0 && sv.maxCoeff() < kMaxAnisotropy * sv.minCoeff()) {
-      transform_.linear() = linear;
-      transform_.translation() = m.row(3).transpose();
-      fitted = true;
-    }
-  }
+  if (n >= kAffinePairs)
+    fitted = fit_affine(std::vector<Vec3>(on_b.begin(), on_b.begin() + n),
+                        std::vector<Vec3>(on_a.begin(), on_a.begin() + n), std::vector<double>(n, 1.0), transform_);
   if (!fitted && n >= 3) {
     const Eigen::Matrix4d similarity = Eigen::umeyama(from, to, true);
     if (similarity.allFinite() && similarity.topLeftCorner<3, 3>().determinant() > 0) {
@@ -65,6 +91,43 @@ PathGuide::PathGuide(const std::vector<Vec3>& on_a, const std::vector<Vec3>& on_
     const double s = std::sqrt(area_a / std::max(area_b, 1e-300));
     transform_ = Eigen::Translation3d(centroid(a.vertices)) * Eigen::Scaling(s) *
                  Eigen::Translation3d(-centroid(b.vertices));
+  }
+  align_surfaces(on_a, on_b, a, b);
+}
+
+void PathGuide::align_surfaces(const std::vector<Vec3>& on_a, const std::vector<Vec3>& on_b, const TriangleMesh& a,
+                               const TriangleMesh& b) {
+  const std::vector<Vec3> from_a = samples(a), from_b = samples(b);
+  const int n = int(std::min(on_a.size(), on_b.size()));
+  // The pairs weigh as much as all the samples together.
+  const double pair_weight = n > 0 ? std::sqrt(double(from_a.size() + from_b.size()) / n) : 0;
+  double last = std::numeric_limits<double>::infinity();
+  Eigen::Affine3d kept = transform_;
+  for (int round = 0; round < kClosestRounds; ++round) {
+    std::vector<Vec3> mapped(from_b.size());
+    for (std::size_t i = 0; i < from_b.size(); ++i) mapped[i] = to_a(from_b[i]);
+    std::vector<Vec3> x, y;
+    std::vector<double> weight;
+    double distance = 0;
+    for (std::size_t i = 0; i < from_b.size(); ++i) {
+      const Vec3& nearest_a = from_a[nearest_index(mapped[i], from_a)];
+      x.push_back(from_b[i]), y.push_back(nearest_a), weight.push_back(1);
+      distance += (nearest_a - mapped[i]).squaredNorm();
+    }
+    for (const Vec3& p : from_a) {
+      const int j = nearest_index(p, mapped);
+      x.push_back(from_b[j]), y.push_back(p), weight.push_back(1);
+      distance += (mapped[j] - p).squaredNorm();
+    }
+    if (!(distance < last * (1 - 1e-6))) {  // the last fit did not help: back to the one before
+      transform_ = kept;
+      break;
+    }
+    last = distance, kept = transform_;
+    for (int i = 0; i < n; ++i) x.push_back(on_b[i]), y.push_back(on_a[i]), weight.push_back(pair_weight);
+    Eigen::Affine3d next;
+    if (!fit_affine(x, y, weight, next)) break;
+    transform_ = next;
   }
 }
 

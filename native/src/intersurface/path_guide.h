@@ -5,12 +5,13 @@
 // wind differently: the patches then twist against each other. B is brought
 // into A's frame by a transform fitted to the given feature pairs (affine
 // from 4 pairs unless it stretches more than 4:1 or mirrors, else a
-// similarity from 3, else the centroids and areas), and a step of B's search
-// costs more the farther it lies from A's path there:
+// similarity from 3, else the centroids and areas), then refined by
+// iterative closest points between the two surfaces, and a step of B's
+// search costs more the farther it lies from A's path there:
 // 1 + kPull * distance / sqrt(A's area), and 1 on A's path itself, so that
 // a copy of A gets A's own paths. A torus against a stretched copy of
-// itself, over 21 sets of 0-16 true pairs: 12.1 -> 4.5 % mean error (median
-// 8.5 -> 2.7 %, without pairs 31 -> 5.2 %; BENCHMARKS.md).
+// itself, over 21 sets of 0-16 true pairs: 12.1 -> 2.3 % mean error
+// (BENCHMARKS.md).
 #pragma once
 #include <Eigen/Geometry>
 #include <functional>
@@ -35,6 +36,13 @@ class PathGuide {
   int nearest(const Vec3& a_point, const std::vector<Vec3>& b_points) const;
 
  private:
+  // Iterative closest points both ways (vertex samples of each mesh matched
+  // to the other's nearest in A's frame), the pairs weighing as much as all
+  // samples, refitted affinely while the matched distance falls: meshes posed
+  // alike line up even when the pairs are few, coplanar or absent.
+  void align_surfaces(const std::vector<Vec3>& on_a, const std::vector<Vec3>& on_b, const TriangleMesh& a,
+                      const TriangleMesh& b);
+
   Eigen::Affine3d transform_ = Eigen::Affine3d::Identity();
   double scale_a_ = 1;
 };
