@@ -90,8 +90,10 @@ class PatchEnergy {
     // A hole's temporary fan keeps its embedding valid but weighs nothing.
     for (int f : faces) {
       shape_[f] = source.mesh.input_triangle(f) < source.input_triangles ? shape_of(source, f) : Shape{};
-      for (int v : source.mesh.triangles()[f])
+      for (int v : source.mesh.triangles()[f]) {
+        ring_[v].push_back(f);
         if (!image_.count(v)) image_[v] = locate(*target_locator_, target, uv.at(v), scale);
+      }
     }
     for (int g : target_faces) {
       back_shape_[g] = target.mesh.input_triangle(g) < target.input_triangles ? shape_of(target, g) : Shape{};
@@ -184,7 +186,7 @@ class PatchEnergy {
   Move trial(int v, const Vec2& p) const {
     Move m;
     m.point = p;
-    const std::vector<int> faces = ring(v);
+    const std::vector<int>& faces = ring(v);
     for (int f : faces)
       if (orientation_ * signed_area(f, v, p) <= 0) return m;
     m.image = locate(*target_locator_, target_, p, scale_);
@@ -239,12 +241,7 @@ class PatchEnergy {
 
  private:
   // v's triangles in this patch (a vertex on a path has triangles in two).
-  std::vector<int> ring(int v) const {
-    std::vector<int> faces;
-    for (int f : source_.mesh.faces_of(v))
-      if (shape_.count(f)) faces.push_back(f);
-    return faces;
-  }
+  const std::vector<int>& ring(int v) const { return ring_.at(v); }
 
   static Image image_in(const PartitionSide& side, int face, const std::array<double, 3>& w, double scale) {
     const Triangle& t = side.mesh.triangles()[face];
@@ -290,6 +287,7 @@ class PatchEnergy {
   double scale_;
   double orientation_ = 1;
   std::unordered_map<int, Shape> shape_, back_shape_;
+  std::unordered_map<int, std::vector<int>> ring_;  // per vertex: its triangles in this patch
   std::unordered_map<int, Image> image_, back_image_;
   std::unordered_map<int, std::vector<int>> host_;  // source triangle -> target vertices inside it
   std::unique_ptr<PatchLocator> target_locator_;

@@ -17,7 +17,8 @@ ClosedMesh close_holes(const TriangleMesh& mesh, bool any_genus) {
   const MeshReport report = check_mesh(mesh);
   const bool usable = report.manifold() && report.inconsistently_oriented_edges == 0 && report.components == 1 &&
                       report.out_of_range_indices == 0 && report.non_finite_vertices == 0;
-  if (any_genus && !usable) throw TopologyError("mesh has " + summarize(report) + "; it must be one manifold, consistently oriented surface");
+  if (any_genus && !usable)
+    throw TopologyError("mesh has " + summarize(report) + "; it must be one manifold, consistently oriented surface");
   if (report.boundary_loops == 0) {
     if (!any_genus) require_sphere_topology(mesh);
     return closed;
