@@ -124,7 +124,8 @@ def seeds_main() -> int:
     for name, (meshes, features) in sets.items():
         free = [_native.spherical_parameterization(v, t)[1]["efficiency"] for v, t in meshes]
         for label, options in [*((f"seed {s}", {"seed": s}) for s in range(1, 8)),
-                               ("4 restarts from seed 1", {"restarts": 4})]:
+                               ("4 restarts from seed 1", {"restarts": 4}),
+                               ("seed 1, aligned (step 7)", {"align": True})]:
             start = time.perf_counter()
             result = _native.consistent_spherical_parameterization(meshes, features, **options)
             seconds = time.perf_counter() - start
@@ -138,7 +139,9 @@ def seeds_main() -> int:
         f"`python3 bench/consistent_benchmark.py --seeds`, measured {machine()}, effort 1, grid 64. The same "
         "features as above; each row one run of the whole pipeline with that seed (it turns the random "
         "base of the unconstrained maps: step 1, the members' own maps that guide the paths, step 5), "
-        "or `restarts=4` (seeds 1-4, the run with the highest suitability kept). `suitability` = the "
+        "or `restarts=4` (seeds 1-4, the run with the highest suitability kept), or `align=True` (step 7: "
+        "each member's map refitted towards member 0's where that lowers the distortion between them). "
+        "`suitability` = the "
         "mean over members of final efficiency / own quick map's efficiency (what restarts rank by); "
         "`ratio` = worst member's final efficiency / its own unconstrained efficiency (effort 1).",
         "",

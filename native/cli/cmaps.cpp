@@ -44,7 +44,7 @@ const char* const kUsage = R"(usage:
   cmaps constrained IN --features FILE [--targets FILE] -o OUT [--refined-mesh PATH]
                     [--seed N] [--effort 0|1|2] [--threads N] [--json]
   cmaps consistent IN IN ... --features FILE -o DIR [--remesh N] [--grid N] [--first K] [--restarts K]
-                   [--seed N] [--effort 0|1|2] [--threads N] [--json]
+                   [--align] [--seed N] [--effort 0|1|2] [--threads N] [--json]
   cmaps intersurface A B [--features FILE] -o DIR [--optimize R] [--restarts K] [--seed N] [--effort 0|1|2]
                      [--threads N] [--json]
   cmaps transfer SOURCE TARGET [--features FILE] -o OUT.obj [--positions] [--optimize R] [--restarts K]
@@ -129,6 +129,10 @@ options:
                      the one whose maps keep most of each input's own
                      efficiency (with few features a run can twist one
                      input's map around them)
+  --align            consistent: after the six steps, refit each input's map
+                     towards the first input's where that lowers the
+                     distortion between them: poses of one shape slide less
+                     between the features, at some of each input's efficiency
   --seed N           random seed; equal seeds give equal results (default 1)
   --effort E         0 = fast preview, 1 = default, 2 = best quality
   --threads N        worker threads (default 2)
@@ -156,6 +160,7 @@ struct Arguments {
   int threads = 2;
   bool json = false;
   bool positions = false;  // transfer only
+  bool align = false;      // consistent only
 };
 
 long long parse_integer(const std::string& option, const std::string& text, long long low, long long high) {
@@ -182,6 +187,7 @@ Arguments parse(const std::vector<std::string>& args) {
     };
     if (arg == "--json") a.json = true;
     else if (arg == "--positions") a.positions = true;
+    else if (arg == "--align") a.align = true;
     else if (arg == "-o" || arg == "--output") a.output = value();
     else if (arg == "--features") a.features = value();
     else if (arg == "--targets") a.targets = value();
@@ -218,6 +224,7 @@ Arguments parse(const std::vector<std::string>& args) {
   if (a.restarts_given && a.command != "intersurface" && a.command != "transfer" && a.command != "consistent")
     throw UsageError(a.command + " takes no --restarts (only consistent, intersurface and transfer do)");
   if (a.positions && a.command != "transfer") throw UsageError(a.command + " takes no --positions (only transfer does)");
+  if (a.align && a.command != "consistent") throw UsageError(a.command + " takes no --align (only consistent does)");
   if (a.command != "consistent") {
     for (const auto& [option, given] : {std::pair<const char*, bool>{"--remesh", a.remesh_given},
                                         {"--grid", a.grid_given},
@@ -654,6 +661,7 @@ void run_consistent(const Arguments& args, Outcome& out) {
   options.first = args.first;
   options.grid = args.grid;
   options.restarts = args.restarts;
+  options.align = args.align;
   const cmaps::ConsistentResult result =
       with_terminal_progress(!args.json && isatty(STDERR_FILENO), [&](const cmaps::ProgressCallback& progress) {
         return cmaps::consistent_spherical_parameterization(members, options, progress);
@@ -737,6 +745,7 @@ void run_consistent(const Arguments& args, Outcome& out) {
   out.first = result.first;
   out.json.add("grid", args.grid)
       .add("restarts", args.restarts)
+      .add("align", args.align)
       .add("restart", result.restart)
       .add_json("restart_suitability", JsonObject::array(result.restart_suitability))
       .add("seconds_compute", result.seconds)

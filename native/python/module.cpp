@@ -433,14 +433,15 @@ void require_grid_resolution(int n, const char* name) {
 }
 
 py::dict consistent_spherical_parameterization(const py::handle& meshes_data, const py::handle& features_data,
-                                               int first, int grid, int restarts, std::uint64_t seed, int effort,
-                                               int threads, const py::object& progress) {
+                                               int first, int grid, int restarts, bool align, std::uint64_t seed,
+                                               int effort, int threads, const py::object& progress) {
   cmaps::ConsistentOptions options;
   options.sphere = sphere_options(seed, effort, threads, progress);
   options.grid = grid;
   options.first = first;
   if (restarts < 1) raise(PyExc_ValueError, "restarts must be at least 1, got " + std::to_string(restarts));
   options.restarts = restarts;
+  options.align = align;
   require_grid_resolution(grid, "grid");
   std::vector<cmaps::TriangleMesh> meshes = to_meshes(meshes_data);
   if (meshes.size() < 2)
@@ -949,14 +950,17 @@ PYBIND11_MODULE(_native, m) {
         "Cancelled when progress returns False.");
   m.def("consistent_spherical_parameterization", &consistent_spherical_parameterization, py::arg("meshes"),
         py::arg("features"), py::kw_only(), py::arg("first") = -1, py::arg("grid") = 64, py::arg("restarts") = 1,
-        py::arg("seed") = 1, py::arg("effort") = 1, py::arg("threads") = 2, py::arg("progress") = py::none(),
+        py::arg("align") = false, py::arg("seed") = 1, py::arg("effort") = 1, py::arg("threads") = 2,
+        py::arg("progress") = py::none(),
         "Consistent spherical parameterization of a set (thesis 3.2): every feature lands on one common\n"
         "point of the sphere on every member. meshes: sequence of (vertices, triangles), closed genus 0.\n"
         "features: (members, k) integer vertex indices, -1 where a member lacks the feature; every member\n"
         "needs at least 3 and one member all of them. first: member seeding the locations (-1: the first\n"
         "with every feature); grid: even resolution of the intermediate octahedral remeshes; restarts: runs\n"
         "with seeds seed, seed + 1, ..., keeping the one whose maps keep most of each member's own\n"
-        "efficiency. Returns a dict: 'feature_locations' (k, 3) common unit vectors, 'initial_locations'\n"
+        "efficiency; align: step 7, each member's map refitted towards the first member's where that lowers\n"
+        "the distortion between them (poses of one shape: less sliding between the features, at some\n"
+        "efficiency). Returns a dict: 'feature_locations' (k, 3) common unit vectors, 'initial_locations'\n"
         "(k, 3) from the first member alone, 'first', 'restart' (the run kept), 'suitability' (its mean\n"
         "efficiency over the members' own), 'restart_suitability' (per run), 'seconds', and 'members': per member (sphere, stats, extras) as returned by\n"
         "constrained_spherical_parameterization (extras['refined_vertices'], extras['triangles'] and\n"

@@ -90,6 +90,7 @@ def test_missing_input(cmaps_binary, tmp_path, command):
         (["sphere", SPOT_LOW, "-o", "x.obj", "--threads", "two"], "--threads expects an integer"),
         (["sphere", SPOT_LOW, "-o", "x.stl"], "must end in .obj, .ply or .off"),
         (["check", SPOT_LOW, "--bogus"], "unknown option '--bogus'"),
+        (["sphere", SPOT_LOW, "-o", "x.obj", "--align"], "sphere takes no --align (only consistent does)"),
     ],
 )
 def test_usage_errors(cmaps_binary, args, reason):

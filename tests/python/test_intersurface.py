@@ -123,7 +123,7 @@ def test_restarts_keep_the_least_distorted_map(native):
 
 def test_faces_with_holes(native):
     """Two expressions (shared vertex order, 2 holes each), 4 features ringing each hole and 4 inside: the
-    boundaries map onto each other and vertex i lands near vertex i (measured 0.68 %)."""
+    boundaries map onto each other and vertex i lands near vertex i (measured 0.71 %)."""
     from test_consistent import FACES, boundary_loops, farthest_points
     a, b = native.read_mesh(str(FACES[0])), native.read_mesh(str(FACES[1]))
     loops = boundary_loops(a[1])
@@ -140,7 +140,8 @@ def test_faces_with_holes(native):
             for v in loop:  # all weight on corners of the target's boundary
                 corners = target[1][triangle[v]]
                 assert sum(w for c, w in zip(corners, weights[v]) if c not in on_boundary) < 1e-9
-    assert r["symmetric_dirichlet"] == r["composition_dirichlet"]  # holes: the plain composition
+    # Optimized with the rims held on their arcs (no refit with holes): less distorted than the composition.
+    assert sum(r["symmetric_dirichlet"]) < sum(r["composition_dirichlet"])
     for on, truth in [(r["a_on_b"], b[0]), (r["b_on_a"], a[0])]:
         assert np.linalg.norm(on - truth, axis=1).mean() / diagonal(truth) < 0.01
     with pytest.raises(native.InvalidMeshError, match="ringed by 0 features"):

@@ -160,8 +160,8 @@ struct IntersurfaceResult {
 // the image of the nearest used vertex (a feature on one is refused).
 // Genus 0 meshes may have holes (thesis 3.5), each ringed by at least 3
 // features, the same pairs around corresponding holes: boundaries map onto
-// boundaries; the map is then the plain composition (no refit, no
-// optimization, which do not keep boundary vertices on their arcs yet).
+// boundaries; the map is then optimized with the boundary vertices held on
+// their arcs, without the refit (which does not keep them there).
 // Throws TopologyError for a mesh that is not one manifold, consistently
 // oriented surface, closed or genus 0 with holes (naming A or B), for meshes of different
 // genus ("A has genus 1, B has genus 2; an inter-surface map needs equal

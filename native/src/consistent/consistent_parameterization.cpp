@@ -13,6 +13,7 @@
 #include "consistent_maps/remesh.h"
 #include "consistent_maps/sphere_locator.h"
 #include "consistent_maps/spherical_parameterization.h"
+#include "consistent/member_alignment.h"
 #include "consistent/parameterize_with_reference.h"
 #include "paths/mesh_holes.h"
 #include "sphere/consistent_constrained_parameterization.h"
@@ -274,6 +275,7 @@ ConsistentResult consistent_spherical_parameterization(const std::vector<Consist
   std::vector<double> own_efficiency;  // of the first run's own maps: one yardstick for every run
   std::vector<double> scores;
   ConsistentResult best;
+  const double span = options.align ? 0.8 : 1;  // of the progress, before step 7
   for (int k = 0; k < restarts; ++k) {
     ConsistentOptions run_options = options;
     run_options.sphere.seed = options.sphere.seed + std::uint64_t(k);
@@ -286,13 +288,14 @@ ConsistentResult consistent_spherical_parameterization(const std::vector<Consist
       own[i] = {std::move(r.sphere), r.report.efficiency};
       if (k == 0) own_efficiency.push_back(r.report.efficiency);
     }
-    ConsistentResult run = consistent_run(members, run_options, own, slice(progress, double(k) / restarts,
-                                                                           double(k + 1) / restarts));
+    ConsistentResult run = consistent_run(members, run_options, own, slice(progress, span * k / restarts,
+                                                                           span * (k + 1) / restarts));
     run.suitability = have_own ? suitability(run, own_efficiency) : 0;
     scores.push_back(run.suitability);
     if (k == 0 || run.suitability > best.suitability) best = std::move(run), best.restart = k;
   }
   best.restart_suitability = std::move(scores);
+  if (options.align) align_members(members, best, options, slice(progress, 0.8, 1));
   best.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return best;
 }
