@@ -151,13 +151,15 @@ def feature_names(objects):
     return _features.shared_names(list(objects))
 
 
-def run(tasks, names, *, effort=1, seed=1, threads=None, progress=None, restarts=1):
+def run(tasks, names, *, effort=1, seed=1, threads=None, progress=None, restarts=1, align=False):
     """The computation proper, touching no Blender data (safe in a worker thread); returns an Outcome.
 
     One object: its unconstrained map. Several: the consistent parameterization of the set, each
     feature of `names` landing on one common sphere point on every member that has it (a member
     lacking a feature, -1 in its Task, is left free there). Several objects are computed `restarts` times
-    (seeds seed, seed + 1, ...), the best run kept.
+    (seeds seed, seed + 1, ...), the best run kept; with `align` every member's map is then refitted
+    towards the first complete member's where that lowers the distortion between them (poses of one
+    shape slide less between the features; pairs of genus >= 1 ignore it).
     progress(fraction of the whole run, text) returning False cancels: raises Cancelled.
     """
     threads = threads or os.cpu_count() or 1
@@ -178,7 +180,7 @@ def run(tasks, names, *, effort=1, seed=1, threads=None, progress=None, restarts
                            list(names), [sphere_[v] for v in vertices])
         result = native.consistent_spherical_parameterization(
             [(t.arrays.vertices, t.arrays.triangles) for t in tasks], [t.feature_vertices for t in tasks],
-            effort=effort, seed=seed, threads=threads, progress=forward, restarts=restarts)
+            effort=effort, seed=seed, threads=threads, progress=forward, restarts=restarts, align=align)
     except native.InvalidMeshError as e:  # the library numbers the members: name them
         raise ComputeError(re.sub(r"\bmesh (\d+)\b", lambda m: f"'{tasks[int(m.group(1))].name}'"
                                   if int(m.group(1)) < len(tasks) else m.group(0), str(e))) from e
@@ -233,7 +235,7 @@ def apply(tasks, outcome):
     return {task.name: member[1] for task, member in zip(tasks, outcome.members)}
 
 
-def compute(objects, *, effort=1, seed=1, threads=None, progress=None, restarts=1):
+def compute(objects, *, effort=1, seed=1, threads=None, progress=None, restarts=1, align=False):
     """Maps every object onto the sphere and stores the results; returns {object name: stats}.
 
     With several objects the maps are consistent: each feature lands on the same sphere point on every
@@ -241,14 +243,14 @@ def compute(objects, *, effort=1, seed=1, threads=None, progress=None, restarts=
     two objects, every object needs at least 3 of them, and one object all (feature_problems() says what
     is missing); api.remesh() then builds consistent remeshes. `restarts` > 1 computes several objects
     that many times (other seeds) and keeps the best run: with few features one run can twist an object's
-    map around them.
+    map around them. `align` refits every object's map towards the first complete object's (see run()).
 
     Raises ComputeError (invalid input, nothing modified) or Cancelled (progress returned False).
     """
     objects = list(objects)
     tasks = prepare(objects)
     return apply(tasks, run(tasks, feature_names(objects), effort=effort, seed=seed, threads=threads,
-                            progress=progress, restarts=restarts))
+                            progress=progress, restarts=restarts, align=align))
 
 
 def _remesh_problems(objects, resolution, scene):

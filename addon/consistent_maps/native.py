@@ -26,16 +26,19 @@ def spherical_parameterization(vertices, triangles, *, effort, seed, threads, pr
         vertices, triangles, effort=effort, seed=seed, threads=threads, progress=progress)
 
 
-def consistent_spherical_parameterization(meshes, features, *, effort, seed, threads, progress, restarts=1):
+def consistent_spherical_parameterization(meshes, features, *, effort, seed, threads, progress, restarts=1,
+                                          align=False):
     """Maps of a set with every feature on one common sphere point (thesis 3.2), computed `restarts` times
-    (seeds seed, seed + 1, ...) keeping the run whose maps keep most of each member's own efficiency.
+    (seeds seed, seed + 1, ...) keeping the run whose maps keep most of each member's own efficiency;
+    `align`: then each member's map refitted towards the first complete member's (step 7).
 
     meshes: [(vertices, triangles)]; features: (members, k) vertex indices. Returns a dict with
     'feature_locations' (k, 3) and 'members': per member (sphere, stats, extras), extras holding the
     map as a parameterized surface ('refined_vertices', 'triangles', 'refined_sphere').
     """
     return _native.consistent_spherical_parameterization(
-        meshes, features, restarts=restarts, effort=effort, seed=seed, threads=threads, progress=progress)
+        meshes, features, restarts=restarts, align=align, effort=effort, seed=seed, threads=threads,
+        progress=progress)
 
 
 def intersurface_map(mesh_a, mesh_b, feature_pairs, *, effort, seed, threads, progress, restarts=1,

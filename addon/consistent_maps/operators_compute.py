@@ -9,7 +9,7 @@ TIMER_STEP = 0.1
 
 def _options(context):
     settings = context.scene.consistent_maps
-    return {"effort": int(settings.effort), "restarts": settings.restarts}
+    return {"effort": int(settings.effort), "restarts": settings.restarts, "align": settings.align}
 
 
 def _leave_edit_mode(context, objects):

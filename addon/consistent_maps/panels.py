@@ -154,6 +154,7 @@ class CM_PT_compute(_Panel, bpy.types.Panel):
         if running is None:
             layout.prop(settings, "effort")
             layout.prop(settings, "restarts")
+            layout.prop(settings, "align")
             layout.operator("consistent_maps.compute", icon='PLAY')
         else:
             row = layout.row()

@@ -46,6 +46,10 @@ class CM_Settings(bpy.types.PropertyGroup):
     restarts: IntProperty(name="Restarts", default=1, min=1, max=16,
                           description="Compute several objects this many times (other random seeds) and keep the "
                                       "best: with few features a run can twist one object's map around them")
+    align: BoolProperty(name="Align to First", default=False,
+                        description="Refit every object's map towards the first complete object's where that "
+                                    "distorts the map between them less: poses of one shape slide less between "
+                                    "the features (takes longer, costs some stretch efficiency)")
     resolution: IntProperty(name="Resolution", default=64, min=2, max=1024,
                             description="Octahedral grid resolution n of the remeshes (even): n² + 2 vertices")
     morph_target: PointerProperty(type=bpy.types.Object, poll=_is_mesh, name="Target",

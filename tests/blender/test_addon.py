@@ -472,9 +472,10 @@ def test_compute_operator_stores_results():
     make_set([a, b])
     bpy.context.scene.consistent_maps.effort = '0'
     bpy.context.scene.consistent_maps.restarts = 2
+    bpy.context.scene.consistent_maps.align = True
     assert bpy.ops.consistent_maps.compute() == {'FINISHED'}
     tasks = api.prepare([a, b])
-    outcome = api.run(tasks, api.feature_names([a, b]), effort=0, restarts=2)  # what the panel's settings ask
+    outcome = api.run(tasks, api.feature_names([a, b]), effort=0, restarts=2, align=True)  # the panel's settings
     for obj, member in zip((a, b), outcome.members):
         assert np.allclose(api.sphere(obj), member[0], atol=1e-6)  # stored as float32
     for obj in (a, b):

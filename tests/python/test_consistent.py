@@ -222,6 +222,19 @@ def test_restarts_keep_the_best_run(native, meshes, features, result):
         assert (sphere == kept).all()
 
 
+def test_align_refits_members_towards_the_first(native, meshes, features, result):
+    """Step 7: the first member keeps its map; the others are refitted (kept where the distortion between
+    them and the first drops), features still exact (the missing one free), no map folds. Its effect on
+    the correspondence is measured on sets/cactus (native tests, BENCHMARKS.md)."""
+    aligned = native.consistent_spherical_parameterization(meshes, features, grid=GRID, align=True)
+    assert (aligned["members"][0][0] == result["members"][0][0]).all()
+    assert any((a[0] != r[0]).any() for a, r in zip(aligned["members"][1:], result["members"][1:]))
+    for (sphere, stats, _), row in zip(aligned["members"], features):
+        assert stats["flipped"] == 0 and stats["degenerate"] == 0
+        present = row >= 0
+        assert np.abs(sphere[row[present]] - aligned["feature_locations"][present]).max() <= 1e-12
+
+
 def test_rejects_bad_input(native, meshes, features):
     two = meshes[:2]
     good = features[:2].copy()
@@ -317,6 +330,7 @@ def test_cli_json(cli, meshes, result):
     m = len(meshes)
     assert report["error"] is None and report["first"] == 0
     assert report["restarts"] == 1 and report["restart"] == 0 and len(report["restart_suitability"]) == 1
+    assert report["align"] is False
     assert report["faces"] == [len(t) for _, t in meshes]
     for key in ("stretch_efficiency", "flipped", "steiner_vertices", "bijective"):
         assert len(report[key]) == m
