@@ -176,7 +176,7 @@ SETS = [  # name, files, features on member 0 for a count (same vertex indices o
     ("sets/cactus", [f"cactus{i}.ply" for i in range(5)], lambda v, t, count: farthest_points(v, count - 1),
      "farthest points from vertex 0"),
 ]
-METHODS = ("consistent set", "pairwise", "pairwise, plain")
+METHODS = ("consistent set", "consistent set, aligned", "pairwise", "pairwise, plain")
 
 
 def percentages(errors):
@@ -197,20 +197,22 @@ def measure_set(folder, name, files, choose, count, rows, notes):
     colours, uv = colours_of(vertices), cylinder_uv(vertices, triangles)
     source_obj = folder / "source.obj"
     write_attributed_obj(source_obj, vertices, triangles, colours, uv)
-    start = time.perf_counter()
-    try:
-        result = _native.consistent_spherical_parameterization(meshes, np.array([features] * len(meshes)))
-        members = [(v, t, sphere, parameterization(t, extras))
-                   for (v, t), (sphere, _, extras) in zip(meshes, result["members"])]
-    except (RuntimeError, ValueError) as e:
-        notes.add(f"{name} with {count} features: the consistent parameterization fails ({e}).")
-        members = None
-    set_seconds = time.perf_counter() - start
+    sets = {}  # method -> (members, seconds) of the consistent parameterization
+    for method, align in (("consistent set", False), ("consistent set, aligned", True)):
+        start = time.perf_counter()
+        try:
+            result = _native.consistent_spherical_parameterization(meshes, np.array([features] * len(meshes)),
+                                                                   align=align)
+            sets[method] = ([(v, t, sphere, parameterization(t, extras))
+                             for (v, t), (sphere, _, extras) in zip(meshes, result["members"])],
+                            time.perf_counter() - start)
+        except (RuntimeError, ValueError) as e:
+            notes.add(f"{name} with {count} features: the consistent parameterization fails ({e}).")
     measured = {}
     for j in range(1, len(meshes)):
         truth = (vertices, meshes[j][0], colours, uv)
-        outcomes = [] if members is None else [("consistent set", f"{set_seconds:.1f} (whole set)",
-                                                consistent_transfer(members[0], members[j], colours, uv))]
+        outcomes = [(method, f"{seconds:.1f} (whole set)", consistent_transfer(members[0], members[j], colours, uv))
+                    for method, (members, seconds) in sets.items()]
         for optimize, method in ((2, "pairwise"), (0, "pairwise, plain")):
             try:
                 *carried, wall, again, agreement = pairwise_transfer(folder, source_obj, meshes[0], paths[j],
@@ -254,7 +256,9 @@ def main():
         "morph), `transfer` = target vertex i at its image on the source against source vertex i (`cmaps "
         "transfer --positions`, the same map as the colours and UVs). `consistent set` = the consistent "
         "parameterization of the whole set (`consistent_spherical_parameterization`) composed through the "
-        "sphere exactly as the add-on's transfer does (`consistent_maps.mapping`); `pairwise` = `cmaps "
+        "sphere exactly as the add-on's transfer does (`consistent_maps.mapping`); `aligned`: the same with "
+        "`align=True` (step 7, the add-on's Align to First; sets/faces: no change, meshes with holes keep "
+        "their maps); `pairwise` = `cmaps "
         "transfer SOURCE TARGET --features --positions` (the inter-surface map of target onto source, default "
         "`--optimize 2`), the morph from the same map through `intersurface_map`; `pairwise, plain` = "
         "`--optimize 0`. " + " ".join(sorted(notes)) + " Target (issue 7): every error under 1 %.",
