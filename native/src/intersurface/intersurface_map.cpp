@@ -267,34 +267,6 @@ std::vector<Vec3> corner_directions(const TriangleMesh& mesh, const ConstrainedR
   return directions;
 }
 
-void optimize_composition(ComposedSide a, ComposedSide b, int rounds, int sweeps, int threads,
-                          const ProgressCallback& progress) {
-  // Holes are closed by their fans, whose corners (the rims and the centres)
-  // stay put: the rims stay on their arcs, and no vertex can enter a hole,
-  // since none leaves its star.
-  ParameterizedSurface pa = parameterized_surface(a.mesh, a.map, /*close_holes=*/true),
-                       pb = parameterized_surface(b.mesh, b.map, /*close_holes=*/true);
-  const auto fixed_of = [](const ComposedSide& side, const ParameterizedSurface& p) {
-    std::vector<char> fixed(p.sphere.size(), 0);
-    for (int v : side.fixed) fixed[v] = 1;
-    for (std::size_t t = side.map.triangles.size(); t < p.surface.triangles.size(); ++t)
-      for (int v : p.surface.triangles[t]) fixed[v] = 1;
-    return fixed;
-  };
-  MapOptimizer optimizer({pa.surface, pa.sphere, fixed_of(a, pa)}, {pb.surface, pb.sphere, fixed_of(b, pb)}, threads);
-  bool cancelled = false;
-  optimizer.optimize(rounds, sweeps, 1e-3, [&](double done) {
-    cancelled = progress && !progress(done, "optimizing the map");
-    return !cancelled;
-  });
-  if (cancelled) throw Cancelled();
-  for (const auto& [p, map] : {std::pair<const ParameterizedSurface&, ConstrainedResult&>{pa, a.map}, {pb, b.map}}) {
-    const size_t n = map.sphere.size();
-    std::copy(p.sphere.begin(), p.sphere.begin() + n, map.sphere.begin());
-    for (size_t i = 0; i < map.steiner.size(); ++i) map.steiner[i].sphere = p.sphere[n + i];
-  }
-}
-
 double composition_dirichlet(const TriangleMesh& a, const ConstrainedResult& map_a, const TriangleMesh& b,
                              const ConstrainedResult& map_b, int threads) {
   return measure_intersurface_map(a, b, map_through_sphere(map_a.sphere, b, map_b, {}, threads)).symmetric_dirichlet +
@@ -302,6 +274,36 @@ double composition_dirichlet(const TriangleMesh& a, const ConstrainedResult& map
 }
 
 namespace {
+
+// Lowers the symmetric distortion of the composed map (see MapOptimizer);
+// feature vertices stay on their common points. Holes are closed by their
+// fans, whose corners (the rims and the centres) stay put: the rims stay on
+// their arcs, and no vertex can enter a hole, since none leaves its star.
+void optimize_composition(const TriangleMesh& a, ConstrainedResult& map_a, const TriangleMesh& b,
+                          ConstrainedResult& map_b, const std::vector<FeaturePair>& features,
+                          const IntersurfaceOptions& options, const ProgressCallback& progress) {
+  ParameterizedSurface pa = parameterized_surface(a, map_a, /*close_holes=*/true),
+                       pb = parameterized_surface(b, map_b, /*close_holes=*/true);
+  std::vector<char> fixed_a(pa.sphere.size(), 0), fixed_b(pb.sphere.size(), 0);
+  for (const FeaturePair& f : features) fixed_a[f.a] = fixed_b[f.b] = 1;
+  for (const auto& [map, p, fixed] : {std::tuple<const ConstrainedResult&, const ParameterizedSurface&,
+                                                 std::vector<char>&>{map_a, pa, fixed_a},
+                                      {map_b, pb, fixed_b}})
+    for (std::size_t t = map.triangles.size(); t < p.surface.triangles.size(); ++t)
+      for (int v : p.surface.triangles[t]) fixed[v] = 1;
+  MapOptimizer optimizer({pa.surface, pa.sphere, fixed_a}, {pb.surface, pb.sphere, fixed_b}, options.sphere.threads);
+  bool cancelled = false;
+  optimizer.optimize(options.optimize_rounds, options.optimize_sweeps, 1e-3, [&](double done) {
+    cancelled = progress && !progress(done, "optimizing the map");
+    return !cancelled;
+  });
+  if (cancelled) throw Cancelled();
+  for (const auto& [p, map] : {std::pair<const ParameterizedSurface&, ConstrainedResult&>{pa, map_a}, {pb, map_b}}) {
+    const size_t n = map.sphere.size();
+    std::copy(p.sphere.begin(), p.sphere.begin() + n, map.sphere.begin());
+    for (size_t i = 0; i < map.steiner.size(); ++i) map.steiner[i].sphere = p.sphere[n + i];
+  }
+}
 
 // The vertex farthest from the centroid: the automatic feature of a mesh.
 int farthest_from_centroid(const TriangleMesh& mesh) {
@@ -504,12 +506,7 @@ void map_through_sphere_pair(const TriangleMesh& a, const TriangleMesh& b, const
           result.composition_a_to_b.symmetric_dirichlet + result.composition_b_to_a.symmetric_dirichlet))
       map_a = maps.members[0];
   }
-  if (optimize) {
-    ComposedSide side_a{a, map_a, {}}, side_b{b, map_b, {}};
-    for (const FeaturePair& f : result.features) side_a.fixed.push_back(f.a), side_b.fixed.push_back(f.b);
-    optimize_composition(side_a, side_b, options.optimize_rounds, options.optimize_sweeps, threads,
-                         slice(progress, 0.8, 0.95));
-  }
+  if (optimize) optimize_composition(a, map_a, b, map_b, result.features, options, slice(progress, 0.8, 0.95));
   result.steiner_a = int(map_a.steiner.size());
   result.steiner_b = int(map_b.steiner.size());
   result.seconds_optimize = seconds_since(stage);

@@ -1,7 +1,7 @@
 // Two spherical maps composed into an inter-surface map (a point of one
-// mesh goes to the point of the other with the same sphere point): the
-// composition, its distortion, and its optimization. The genus-0 pair map
-// and the consistent set's alignment with its reference member share them.
+// mesh goes to the point of the other with the same sphere point) and its
+// distortion: shared by the genus-0 pair map and the consistent set's
+// alignment with its seeding member.
 #pragma once
 #include <utility>
 #include <vector>
@@ -16,19 +16,6 @@ namespace cmaps {
 std::vector<SurfacePoint> map_through_sphere(const std::vector<Vec3>& source_sphere, const TriangleMesh& target,
                                              const ConstrainedResult& target_map,
                                              const std::vector<std::pair<int, int>>& exact, int threads);
-
-// One side of a composition being optimized: its vertices in `fixed` (and
-// the corners of its holes' fans) never move.
-struct ComposedSide {
-  const TriangleMesh& mesh;
-  ConstrainedResult& map;
-  std::vector<int> fixed;
-};
-
-// Lowers the symmetric distortion of the composition (see MapOptimizer) by
-// moving the sphere points of both sides.
-void optimize_composition(ComposedSide a, ComposedSide b, int rounds, int sweeps, int threads,
-                          const ProgressCallback& progress);
 
 // The symmetric Dirichlet energy of the composition, A onto B plus B onto A
 // (measure_intersurface_map, vertex images only).
