@@ -59,7 +59,8 @@ struct ConsistentResult {
   double seconds = 0;
   // The mean over members of their final efficiency over their own quick
   // unconstrained map's (0 when not measured: one run without carried guides);
-  // per restart, and the restart kept.
+  // per restart, and the restart kept. Both measure the runs' maps before
+  // step 7 (align), which trades some efficiency for correspondence.
   double suitability = 0;
   std::vector<double> restart_suitability;
   int restart = 0;

@@ -25,13 +25,16 @@ void align_members(const std::vector<ConsistentMember>& members, ConsistentResul
   const ParameterizedSurface on_sphere = parameterized_surface(reference, reference_map);
   const ReferenceMap towards{&on_sphere.surface, &on_sphere.sphere, kConsistencyWeight};
   std::vector<char> open(n, 0);
-  for (int j = 0; j < n; ++j) open[j] = j != r && result.members[j].holes == 0;
+  std::vector<double> energy(n, 0);  // of each member's map against the reference's
+  for (int j = 0; j < n; ++j) {
+    open[j] = j != r && result.members[j].holes == 0;
+    if (open[j]) energy[j] = composition_dirichlet(members[j].mesh, result.members[j], reference, reference_map, threads);
+  }
   for (int pass = 0; pass < kPasses; ++pass) {
     for (int j = 0; j < n; ++j) {
       if (!open[j]) continue;
       open[j] = 0;
       ConstrainedResult& map = result.members[j];
-      double energy = composition_dirichlet(members[j].mesh, map, reference, reference_map, threads);
       const std::vector<Vec3> current = map.sphere;
       // Along the member's own map (nullptr) once: later passes would repeat it exactly.
       std::vector<const std::vector<Vec3>*> guides{&current};
@@ -46,7 +49,7 @@ void align_members(const std::vector<ConsistentMember>& members, ConsistentResul
         ConstrainedResult refit =
             parameterize_to_locations(members[j], result.feature_locations, options.sphere, share, towards, guide);
         const double e = composition_dirichlet(members[j].mesh, refit, reference, reference_map, threads);
-        if (e < energy) energy = e, map = std::move(refit), open[j] = 1;
+        if (e < energy[j]) energy[j] = e, map = std::move(refit), open[j] = 1;
       }
     }
   }
