@@ -49,7 +49,8 @@ class CM_Settings(bpy.types.PropertyGroup):
     align: BoolProperty(name="Align to First", default=False,
                         description="Refit every object's map towards the first complete object's where that "
                                     "distorts the map between them less: poses of one shape slide less between "
-                                    "the features (takes longer, costs some stretch efficiency)")
+                                    "the features (takes longer, costs some stretch efficiency; objects with "
+                                    "holes keep their maps)")
     resolution: IntProperty(name="Resolution", default=64, min=2, max=1024,
                             description="Octahedral grid resolution n of the remeshes (even): n² + 2 vertices")
     morph_target: PointerProperty(type=bpy.types.Object, poll=_is_mesh, name="Target",
