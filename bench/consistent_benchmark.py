@@ -140,7 +140,8 @@ def seeds_main() -> int:
         "features as above; each row one run of the whole pipeline with that seed (it turns the random "
         "base of the unconstrained maps: step 1, the members' own maps that guide the paths, step 5), "
         "or `restarts=4` (seeds 1-4, the run with the highest suitability kept), or `align=True` (step 7: "
-        "each member's map refitted towards member 0's where that lowers the distortion between them). "
+        "each member's map refitted towards the seeding member's, here member 0, where that lowers the "
+        "distortion between them). "
         "`suitability` = the "
         "mean over members of final efficiency / own quick map's efficiency (what restarts rank by); "
         "`ratio` = worst member's final efficiency / its own unconstrained efficiency (effort 1).",

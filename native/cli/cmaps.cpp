@@ -130,7 +130,7 @@ options:
                      efficiency (with few features a run can twist one
                      input's map around them)
   --align            consistent: after the six steps, refit each input's map
-                     towards the first input's where that lowers the
+                     towards the seeding input's (--first) where that lowers the
                      distortion between them: poses of one shape slide less
                      between the features, at some of each input's efficiency
   --seed N           random seed; equal seeds give equal results (default 1)

@@ -958,7 +958,7 @@ PYBIND11_MODULE(_native, m) {
         "needs at least 3 and one member all of them. first: member seeding the locations (-1: the first\n"
         "with every feature); grid: even resolution of the intermediate octahedral remeshes; restarts: runs\n"
         "with seeds seed, seed + 1, ..., keeping the one whose maps keep most of each member's own\n"
-        "efficiency; align: step 7, each member's map refitted towards the first member's where that lowers\n"
+        "efficiency; align: step 7, each member's map refitted towards the seeding member's where that lowers\n"
         "the distortion between them (poses of one shape: less sliding between the features, at some\n"
         "efficiency). Returns a dict: 'feature_locations' (k, 3) common unit vectors, 'initial_locations'\n"
         "(k, 3) from the first member alone, 'first', 'restart' (the run kept), 'suitability' (its mean\n"

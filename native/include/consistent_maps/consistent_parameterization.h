@@ -44,7 +44,7 @@ struct ConsistentOptions {
   // 96-99 %).
   int restarts = 1;
   // Step 7 (see consistent/member_alignment.h): each member's map refitted
-  // towards the first member's, kept where the map between them distorts
+  // towards the seeding member's, kept where the map between them distorts
   // less. Lowers the ground-truth error on poses of one shape (sets/cactus,
   // 8 features: mean 3.1 -> 1.7 %, worst pose 3.6 -> 1.95 %) at some of each
   // member's own efficiency (worst 97 -> 84 % of its own map's).
