@@ -115,4 +115,4 @@ def watch():
 
 bpy.app.timers.register(start, first_interval=1.0)
 bpy.app.timers.register(watch, first_interval=1.5)
-bpy.app.timers.register(lambda: finish(False, "timed out"), first_interval=120)
+bpy.app.timers.register(lambda: finish(False, "timed out"), first_interval=240)
