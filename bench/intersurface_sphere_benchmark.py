@@ -19,7 +19,7 @@ sys.path.insert(0, str(ROOT / "addon"))
 from consistent_maps import _native  # noqa: E402
 
 CACTUS = MESHES / "sets" / "cactus"
-CACTUS_RESTARTS = (1, 6)
+CACTUS_RESTARTS = (1, 3, 6)
 
 
 def pair_features(directory, file, a, b):

@@ -122,9 +122,10 @@ options:
                      two spherical maps, without A's map refitted to B's)
   --restarts K       intersurface, transfer (genus 0): compute the map K times
                      and keep the least distorted (1..100, default 1): restart
-                     k uses seed N + k/2, odd ones a consistent
-                     parameterization with carried guides; the optimization is
-                     local, so with few features restarts find better maps.
+                     k uses seed N + k/3 and, in turn, a consistent
+                     parameterization in one pass, with carried guides, and
+                     with carried guides and B aligned to A; the optimization
+                     is local, so with few features restarts find better maps.
                      consistent: compute the set K times (seed N + k) and keep
                      the one whose maps keep most of each input's own
                      efficiency (with few features a run can twist one

@@ -84,8 +84,10 @@ struct IntersurfaceOptions {
   double correspondence_weight = 0.25;
   // Genus 0: the whole map is computed this many times and the one with the
   // lowest symmetric Dirichlet energy (both directions summed) is kept.
-  // Restart k uses seed + k / 2, and odd restarts lay out the pair's
-  // consistent parameterization with carried guides (ConsistentOptions). The
+  // Restarts lay out the pair's consistent parameterization in turn in one
+  // pass, with carried guides, and with carried guides and B's map aligned
+  // to A's (ConsistentOptions::carry_guides, align; the last instead of the
+  // refit above); restart k uses seed + k / 3. The
   // optimization is local, and which minimum it ends in depends on the
   // starting parameterization: with few features the spread is wide
   // (sets/cactus 0 -> 3, 8 features: ground-truth error 2.2-7.9 % over six

@@ -448,10 +448,14 @@ std::optional<UsedVertices> drop_unused(const TriangleMesh& mesh) {
   return u;
 }
 
+// How a restart lays out the pair's consistent parameterization (see
+// IntersurfaceOptions::restarts).
+enum class PairLayout { single_pass, carried_guides, aligned };
+
 // Genus 0: the composition of a consistent spherical parameterization of
 // the pair, refitted and optimized for symmetric distortion (see the options).
 void map_through_sphere_pair(const TriangleMesh& a, const TriangleMesh& b, const std::vector<FeaturePair>& features,
-                             bool carry_guides, IntersurfaceResult& result, const IntersurfaceOptions& options,
+                             PairLayout layout, IntersurfaceResult& result, const IntersurfaceOptions& options,
                              const ProgressCallback& progress) {
   // Too few pairs for a constrained map: add some from the aligned unconstrained maps.
   auto stage = Clock::now();
@@ -467,7 +471,8 @@ void map_through_sphere_pair(const TriangleMesh& a, const TriangleMesh& b, const
   ConsistentOptions consistent;
   consistent.sphere = options.sphere;
   consistent.grid = options.grid;
-  consistent.carry_guides = carry_guides;
+  consistent.carry_guides = layout != PairLayout::single_pass;
+  consistent.align = layout == PairLayout::aligned;  // B's map refitted towards A's: A's refit below would repeat it
   const ConsistentResult maps = consistent_spherical_parameterization(
       members, consistent, slice(progress, features.size() < 3 ? 0.2 : 0, 0.7));
   result.seconds_parameterize = seconds_since(stage);
@@ -485,7 +490,7 @@ void map_through_sphere_pair(const TriangleMesh& a, const TriangleMesh& b, const
   };
   // With holes, no refit: it does not keep boundary vertices on their arcs.
   const bool closed = map_a.holes == 0 && map_b.holes == 0;
-  const bool refit = options.correspondence_weight > 0 && closed;
+  const bool refit = options.correspondence_weight > 0 && closed && layout != PairLayout::aligned;
   const bool optimize = options.optimize_rounds > 0 && options.optimize_sweeps > 0;
 
   stage = Clock::now();
@@ -663,17 +668,17 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
   if (options.restarts < 1) throw InvalidInput("restarts must be at least 1, got " + std::to_string(options.restarts));
 
   // The optimization ends in a different local minimum from each start, and
-  // the least distorted map wins. Even restarts parameterize the pair in one
-  // pass of steps 3-6 with the next seed; odd ones with the same seed, with
-  // guides carried through the common map (ConsistentOptions), which starts
-  // some pairs in a better basin and others in a worse one.
+  // the least distorted map wins. Restarts cycle through three layouts of
+  // the pair's consistent parameterization, the seed advancing after each
+  // cycle; each starts some pairs in a better basin and others in a worse one.
+  constexpr PairLayout kLayouts[] = {PairLayout::single_pass, PairLayout::carried_guides, PairLayout::aligned};
   std::vector<double> energies;
   IntersurfaceResult best;
   for (int r = 0, restarts = options.restarts; r < restarts; ++r) {
     IntersurfaceOptions attempt = options;
-    attempt.sphere.seed = options.sphere.seed + r / 2;
+    attempt.sphere.seed = options.sphere.seed + r / 3;
     IntersurfaceResult tried = result;
-    map_through_sphere_pair(a, b, features, r % 2 == 1, tried, attempt,
+    map_through_sphere_pair(a, b, features, kLayouts[r % 3], tried, attempt,
                             slice(progress, double(r) / restarts, (r + 1.0) / restarts));
     energies.push_back(tried.distortion_a_to_b.symmetric_dirichlet + tried.distortion_b_to_a.symmetric_dirichlet);
     if (energies.back() <= *std::min_element(energies.begin(), energies.end())) best = std::move(tried);
