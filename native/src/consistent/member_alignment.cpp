@@ -13,8 +13,8 @@ namespace {
 // efficiency; 0.06 on seeds 4 / 7: 2.57 / 2.91 %).
 constexpr double kConsistencyWeight = 0.12;
 // Passes over the members whose map the previous pass changed (sets/cactus,
-// weight 0.5: 1.85 / 1.70 / 1.66 % mean error after 1 / 2 / 3; a member left unchanged
-// would be refitted exactly alike again).
+// weight 0.5: 1.85 / 1.70 / 1.66 % mean error after 1 / 2 / 3; a member
+// left unchanged would be refitted exactly alike again).
 constexpr int kPasses = 3;
 // A refit must keep this share of the efficiency of the member's own
 // unconstrained map (the set's target is 85 %; a refit along the own map

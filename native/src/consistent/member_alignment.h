@@ -10,12 +10,12 @@
 // Per member: the refit (coarse to fine, like the inter-surface map's) is
 // tried along the member's own unconstrained map and along its current one,
 // and kept only if it lowers the symmetric Dirichlet energy of the map
-// between the member and the reference while keeping 85 % of the
-// efficiency of the member's own unconstrained map (the set's target, which
-// the consistency term would otherwise trade away). Features stay on their common
-// points; members with holes keep their maps (the refit does not keep
-// boundary vertices on their arcs). The price is some of each member's own
-// efficiency (BENCHMARKS.md).
+// between the member and the reference while keeping 85 % of the efficiency
+// of the member's own unconstrained map (the set's target, which the
+// consistency term would otherwise trade away). Features stay on their
+// common points; members with holes keep their maps (the refit does not
+// keep boundary vertices on their arcs). The price is some of each member's
+// own efficiency (BENCHMARKS.md).
 #pragma once
 #include <vector>
 
