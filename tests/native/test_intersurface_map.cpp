@@ -109,6 +109,32 @@ TEST(IntersurfaceMap, OptimizationLowersTheDistortionWithoutFolding) {
   EXPECT_GT(r.seconds_optimize, 0);
 }
 
+// Three restarts, one per layout of the pair's consistent parameterization.
+// On cactus pose 0 -> 1 (shared vertex order) with 8 features, the aligned
+// layout is the least distorted (measured 16.5 / 74.4 / 13.3, summed both
+// ways) and the nearest the truth: 2.0 % where the single pass alone gives
+// 2.8 %.
+TEST(IntersurfaceMap, CactusRestartsKeepTheAlignedLayout) {
+  const TriangleMesh a = read_mesh(shared_mesh("sets/cactus/cactus0.ply"));
+  const TriangleMesh b = read_mesh(shared_mesh("sets/cactus/cactus1.ply"));
+  std::vector<FeaturePair> features;
+  for (int v : test::farthest_points(a, 8)) features.push_back({v, v});
+  IntersurfaceOptions options;
+  options.restarts = 3;
+  const IntersurfaceResult r = intersurface_map(a, b, features, options);
+  ASSERT_EQ(r.restart_dirichlet.size(), 3u);
+  EXPECT_EQ(std::min_element(r.restart_dirichlet.begin(), r.restart_dirichlet.end()) - r.restart_dirichlet.begin(), 2);
+  expect_valid_points(r.a_to_b, b);
+  expect_valid_points(r.b_to_a, a);
+  expect_exact_features(r, a, b);
+  EXPECT_EQ(r.sphere_flipped, 0);
+  double error = 0;
+  for (std::size_t v = 0; v < b.vertices.size(); ++v) error += (r.a_on_b[v] - b.vertices[v]).norm();
+  error /= b.vertices.size() * diagonal(b);
+  std::printf("cactus 0 -> 1, 3 restarts: %.2f %%\n", 100 * error);
+  EXPECT_LT(error, 0.025);
+}
+
 TEST(IntersurfaceMap, NoOptimizationKeepsThePlainComposition) {
   const TriangleMesh a = read_mesh(shared_mesh("genus0/spot_low.obj"));
   const TriangleMesh b = read_mesh(shared_mesh("genus0/sphere.obj"));

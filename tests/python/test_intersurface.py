@@ -114,6 +114,10 @@ def test_restarts_keep_the_least_distorted_map(native):
     assert len(energies) == 4
     assert len(set(energies)) == 4  # the starts do lead to different maps
     assert sum(best["symmetric_dirichlet"]) == min(energies)
+    expect_valid(best["a_to_b_triangle"], best["a_to_b_barycentric"], b[1])
+    expect_exact(best, a, b)
+    assert best["sphere_flipped"] == 0
+    print(f"restart energies {energies}, kept {int(np.argmin(energies))}")
     if int(np.argmin(energies)) in singles:
         winner = singles[int(np.argmin(energies))]
         assert (best["a_to_b_triangle"] == winner["a_to_b_triangle"]).all()
