@@ -33,12 +33,13 @@ void align_members(const std::vector<ConsistentMember>& members, ConsistentResul
   const ReferenceMap towards{&on_sphere.surface, &on_sphere.sphere, kConsistencyWeight};
   std::vector<char> open(n, 0);
   std::vector<double> energy(n, 0);  // of each member's map against the reference's
-  std::vector<double> floor(n, 0);   // the least efficiency a refit may keep
+  std::vector<double> least_efficiency(n, 0);  // a refit may keep no less
   for (int j = 0; j < n; ++j) {
     open[j] = j != r && result.members[j].holes == 0;
     if (!open[j]) continue;
     energy[j] = composition_dirichlet(members[j].mesh, result.members[j], reference, reference_map, threads);
-    floor[j] = kEfficiencyKept * spherical_parameterization(members[j].mesh, options.sphere).report.efficiency;
+    const double own = spherical_parameterization(members[j].mesh, options.sphere).report.efficiency;
+    least_efficiency[j] = kEfficiencyKept * own;
   }
   for (int pass = 0; pass < kPasses; ++pass) {
     for (int j = 0; j < n; ++j) {
@@ -59,7 +60,8 @@ void align_members(const std::vector<ConsistentMember>& members, ConsistentResul
         ConstrainedResult refit =
             parameterize_to_locations(members[j], result.feature_locations, options.sphere, share, towards, guide);
         const double e = composition_dirichlet(members[j].mesh, refit, reference, reference_map, threads);
-        if (e < energy[j] && refit.report.efficiency >= floor[j]) energy[j] = e, map = std::move(refit), open[j] = 1;
+        if (e < energy[j] && refit.report.efficiency >= least_efficiency[j])
+          energy[j] = e, map = std::move(refit), open[j] = 1;
       }
     }
   }
