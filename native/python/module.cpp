@@ -994,7 +994,8 @@ PYBIND11_MODULE(_native, m) {
         "'flipped', 'degenerate', and 'composition_dirichlet' before the distortion optimization (optimize:\n"
         "its rounds, 0 = no optimization: for genus 0 the plain composition of the spherical maps);\n"
         "genus 0: 'restart_dirichlet', the energy (both directions summed) of each of the `restarts` maps\n"
-        "(restart k: seed + k // 2, odd k with carried guides); the least distorted one is returned;\n"
+        "(restart k: layout k % 3 of single pass, carried guides, aligned; seed + k // 3); the least\n"
+        "distorted one is returned;\n"
         "'sphere_flipped', 'stretch_efficiency' and 'steiner' of the two spherical maps (genus 0);\n"
         "'seconds' and per stage. Raises InvalidMeshError for different genus,\n"
         "non-manifold meshes or bad pairs, Cancelled when progress returns False.");
