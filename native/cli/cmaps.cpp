@@ -121,7 +121,8 @@ options:
                      (0..100, default 2; 0 = the plain composition of the
                      two spherical maps, without A's map refitted to B's)
   --restarts K       intersurface, transfer (genus 0): compute the map K times
-                     and keep the least distorted (1..100, default 1): restart
+                     and keep the least distorted (lowest median symmetric
+                     Dirichlet energy; 1..100, default 1): restart
                      k uses seed N + k/3 and, in turn, a consistent
                      parameterization in one pass, with carried guides, and
                      with carried guides and B aligned to A; the optimization
@@ -867,6 +868,8 @@ void run_intersurface(const Arguments& args, Outcome& out) {
   out.outputs = JsonObject::array(outputs);
   out.json.add("genus", result.genus)
       .add_json("degenerate", JsonObject::array(std::vector<int>{ab.degenerate, ba.degenerate}))
+      .add_json("median_symmetric_dirichlet", JsonObject::array(std::vector<double>{
+                                                  ab.median_symmetric_dirichlet, ba.median_symmetric_dirichlet}))
       .add("sphere_flipped", result.sphere_flipped)
       .add("base_vertices", result.base_vertices)
       .add("base_triangles", result.base_triangles)
@@ -875,6 +878,7 @@ void run_intersurface(const Arguments& args, Outcome& out) {
                 JsonObject::array(std::vector<double>{result.composition_a_to_b.symmetric_dirichlet,
                                                       result.composition_b_to_a.symmetric_dirichlet}))
       .add("restart_dirichlet", result.restart_dirichlet)
+      .add("restart_median_dirichlet", result.restart_median_dirichlet)
       .add("seconds_partition", result.seconds_partition)
       .add("seconds_parameterize", result.seconds_parameterize)
       .add("seconds_optimize", result.seconds_optimize)

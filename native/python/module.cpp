@@ -576,6 +576,8 @@ py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, co
   d["stretch_efficiency"] = py::make_tuple(result.efficiency_a, result.efficiency_b);
   d["steiner"] = py::make_tuple(result.steiner_a, result.steiner_b);
   d["restart_dirichlet"] = to_numpy(result.restart_dirichlet);
+  d["restart_median_dirichlet"] = to_numpy(result.restart_median_dirichlet);
+  d["median_symmetric_dirichlet"] = py::make_tuple(ab.median_symmetric_dirichlet, ba.median_symmetric_dirichlet);
   d["seconds"] = seconds;
   d["base_vertices"] = result.base_vertices;
   d["base_triangles"] = result.base_triangles;
@@ -993,9 +995,10 @@ PYBIND11_MODULE(_native, m) {
         "(area-normalized, optimum 4, each source triangle mapped linearly onto its corners' images),\n"
         "'flipped', 'degenerate', and 'composition_dirichlet' before the distortion optimization (optimize:\n"
         "its rounds, 0 = no optimization: for genus 0 the plain composition of the spherical maps);\n"
-        "genus 0: 'restart_dirichlet', the energy (both directions summed) of each of the `restarts` maps\n"
-        "(restart k: layout k % 3 of single pass, carried guides, aligned; seed + k // 3); the least\n"
-        "distorted one is returned;\n"
+        "'median_symmetric_dirichlet' (the median triangle's; the mean is dominated by a few triangles);\n"
+        "genus 0: 'restart_dirichlet' and 'restart_median_dirichlet', the energies (both directions summed)\n"
+        "of each of the `restarts` maps (restart k: layout k % 3 of single pass, carried guides, aligned;\n"
+        "seed + k // 3); the one with the lowest median is returned;\n"
         "'sphere_flipped', 'stretch_efficiency' and 'steiner' of the two spherical maps (genus 0);\n"
         "'seconds' and per stage. Raises InvalidMeshError for different genus,\n"
         "non-manifold meshes or bad pairs, Cancelled when progress returns False.");

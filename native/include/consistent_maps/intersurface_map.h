@@ -83,7 +83,8 @@ struct IntersurfaceOptions {
   // the result is the plain composition.
   double correspondence_weight = 0.25;
   // Genus 0: the whole map is computed this many times and the one with the
-  // lowest symmetric Dirichlet energy (both directions summed) is kept.
+  // lowest median symmetric Dirichlet energy (both directions summed) is
+  // kept: the means rank the maps by their few worst sampled triangles.
   // Restarts lay out the pair's consistent parameterization in turn in one
   // pass, with carried guides, and with carried guides and B's map aligned
   // to A's (ConsistentOptions::carry_guides, align; the last instead of the
@@ -113,8 +114,13 @@ constexpr double kCornerNudge = 1e-3;
 // points against the target surface's normal there (the area-weighted normal
 // of the target triangles holding the three images). Both are properties of
 // this vertex sampling: the map itself is bijective (see sphere_flipped).
+// The mean is dominated by the few most distorted triangles (often
+// near-degenerate samples); `median_symmetric_dirichlet`, the median
+// triangle's energy (degenerate images counted as infinite), says how
+// distorted the map is over most of the surface.
 struct MapDistortion {
   double symmetric_dirichlet = 0;
+  double median_symmetric_dirichlet = 0;
   int flipped = 0;
   int degenerate = 0;
 };
@@ -147,8 +153,9 @@ struct IntersurfaceResult {
   double efficiency_a = 0, efficiency_b = 0;
   int sphere_flipped = 0;
   int steiner_a = 0, steiner_b = 0;
-  // Genus 0: per restart, the final symmetric Dirichlet energy A -> B plus B -> A.
-  std::vector<double> restart_dirichlet;
+  // Genus 0: per restart, the final symmetric Dirichlet energy A -> B plus
+  // B -> A: the means, and the medians, which choose the restart kept.
+  std::vector<double> restart_dirichlet, restart_median_dirichlet;
   MapDistortion composition_a_to_b, composition_b_to_a;
   // Wall time per stage: unconstrained maps for added features (genus 0),
   // the consistent partition (genus >= 1), the consistent or patch

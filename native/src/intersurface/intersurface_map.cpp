@@ -575,6 +575,8 @@ MapDistortion measure_intersurface_map(const TriangleMesh& source, const Triangl
 
   MapDistortion d;
   double energy = 0, area = 0;
+  std::vector<double> energies;  // per source triangle of non-zero area
+  energies.reserve(source.triangles.size());
   for (const Triangle& t : source.triangles) {
     const Vec3 &p0 = source.vertices[t[0]], &p1 = source.vertices[t[1]], &p2 = source.vertices[t[2]];
     const Vec3 q0 = scale * mapped[t[0]], q1 = scale * mapped[t[1]], q2 = scale * mapped[t[2]];
@@ -588,12 +590,20 @@ MapDistortion measure_intersurface_map(const TriangleMesh& source, const Triangl
     if (ap <= 0) continue;  // zero-area source triangles carry no energy
     if (0.5 * nq.norm() <= 1e-14 * source_area) {
       ++d.degenerate;
+      energies.push_back(std::numeric_limits<double>::infinity());
       continue;
     }
     energy += ap * e;
     area += ap;
+    energies.push_back(e);
   }
   d.symmetric_dirichlet = area > 0 ? energy / area : std::numeric_limits<double>::infinity();
+  d.median_symmetric_dirichlet = std::numeric_limits<double>::infinity();
+  if (!energies.empty()) {
+    const auto middle = energies.begin() + energies.size() / 2;
+    std::nth_element(energies.begin(), middle, energies.end());
+    d.median_symmetric_dirichlet = *middle;
+  }
   return d;
 }
 
@@ -668,11 +678,12 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
   if (options.restarts < 1) throw InvalidInput("restarts must be at least 1, got " + std::to_string(options.restarts));
 
   // The optimization ends in a different local minimum from each start, and
-  // the least distorted map wins. Restarts cycle through three layouts of
+  // the least distorted map over most of the surface (the lowest median)
+  // wins. Restarts cycle through three layouts of
   // the pair's consistent parameterization, the seed advancing after each
   // cycle; each starts some pairs in a better basin and others in a worse one.
   constexpr PairLayout kLayouts[] = {PairLayout::single_pass, PairLayout::carried_guides, PairLayout::aligned};
-  std::vector<double> energies;
+  std::vector<double> energies, medians;
   IntersurfaceResult best;
   for (int r = 0, restarts = options.restarts; r < restarts; ++r) {
     IntersurfaceOptions attempt = options;
@@ -681,10 +692,13 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
     map_through_sphere_pair(a, b, features, kLayouts[r % 3], tried, attempt,
                             slice(progress, double(r) / restarts, (r + 1.0) / restarts));
     energies.push_back(tried.distortion_a_to_b.symmetric_dirichlet + tried.distortion_b_to_a.symmetric_dirichlet);
-    if (energies.back() <= *std::min_element(energies.begin(), energies.end())) best = std::move(tried);
+    medians.push_back(tried.distortion_a_to_b.median_symmetric_dirichlet +
+                      tried.distortion_b_to_a.median_symmetric_dirichlet);
+    if (medians.back() <= *std::min_element(medians.begin(), medians.end())) best = std::move(tried);
   }
   result = std::move(best);
   result.restart_dirichlet = std::move(energies);
+  result.restart_median_dirichlet = std::move(medians);
   if (progress && !progress(1, "done")) throw Cancelled();
   result.seconds = seconds_since(start);
   return result;
