@@ -110,9 +110,9 @@ TEST(IntersurfaceMap, OptimizationLowersTheDistortionWithoutFolding) {
 }
 
 // The median triangle's energy, which chooses among restarts: 4 for a mesh
-// mapped onto itself, and still 4 when one vertex's image is moved onto its
-// neighbour's, which collapses or stretches the triangles around it and
-// raises the mean.
+// mapped onto itself, and still 4 when one vertex's image is moved to the
+// far side of the mesh, which stretches the few triangles around it into
+// long slivers and raises the mean.
 TEST(IntersurfaceMap, MedianEnergyIsNotMovedByAFewDistortedTriangles) {
   const TriangleMesh mesh = read_mesh(shared_mesh("genus0/spot_low.obj"));
   std::vector<SurfacePoint> identity(mesh.vertices.size());
@@ -124,17 +124,23 @@ TEST(IntersurfaceMap, MedianEnergyIsNotMovedByAFewDistortedTriangles) {
   const MapDistortion exact = measure_intersurface_map(mesh, mesh, identity);
   EXPECT_NEAR(exact.symmetric_dirichlet, 4, 1e-9);
   EXPECT_NEAR(exact.median_symmetric_dirichlet, 4, 1e-9);
+  const int v = mesh.triangles[0][0];
+  int far = v;
+  for (int w = 0; w < int(mesh.vertices.size()); ++w)
+    if ((mesh.vertices[w] - mesh.vertices[v]).norm() > (mesh.vertices[far] - mesh.vertices[v]).norm()) far = w;
   std::vector<SurfacePoint> moved = identity;
-  moved[mesh.triangles[0][0]] = identity[mesh.triangles[0][1]];
+  moved[v] = identity[far];
   const MapDistortion one_bad = measure_intersurface_map(mesh, mesh, moved);
-  EXPECT_GT(one_bad.symmetric_dirichlet + one_bad.degenerate, 4.01);
+  std::printf("one image moved: mean %.2f, median %.6f\n", one_bad.symmetric_dirichlet,
+              one_bad.median_symmetric_dirichlet);
+  EXPECT_GT(one_bad.symmetric_dirichlet, 4.5);
   EXPECT_NEAR(one_bad.median_symmetric_dirichlet, 4, 1e-9);
 }
 
 // Three restarts, one per layout of the pair's consistent parameterization.
 // On cactus pose 0 -> 1 (shared vertex order) with 8 features, the aligned
 // layout is the least distorted (measured, summed both ways: means 16.5 /
-// 74.4 / 13.3, medians 8.9 / 14.0 / 8.6) and the nearest the truth: 2.0 %
+// 74.4 / 13.3, medians 8.71 / 11.37 / 8.52) and the nearest the truth: 2.0 %
 // where the single pass alone gives 2.8 %.
 TEST(IntersurfaceMap, CactusRestartsKeepTheAlignedLayout) {
   const TriangleMesh a = read_mesh(shared_mesh("sets/cactus/cactus0.ply"));
@@ -146,6 +152,7 @@ TEST(IntersurfaceMap, CactusRestartsKeepTheAlignedLayout) {
   const IntersurfaceResult r = intersurface_map(a, b, features, options);
   ASSERT_EQ(r.restart_median_dirichlet.size(), 3u);
   const auto& medians = r.restart_median_dirichlet;
+  std::printf("restart medians %.2f / %.2f / %.2f\n", medians[0], medians[1], medians[2]);
   EXPECT_EQ(std::min_element(medians.begin(), medians.end()) - medians.begin(), 2);
   EXPECT_EQ(r.distortion_a_to_b.median_symmetric_dirichlet + r.distortion_b_to_a.median_symmetric_dirichlet,
             medians[2]);
