@@ -871,6 +871,8 @@ void run_intersurface(const Arguments& args, Outcome& out) {
       .add_json("median_symmetric_dirichlet", JsonObject::array(std::vector<double>{
                                                   ab.median_symmetric_dirichlet, ba.median_symmetric_dirichlet}))
       .add("sphere_flipped", result.sphere_flipped)
+      .add_json("refitted", std::string(result.refitted_a ? "[true, " : "[false, ") +
+                                (result.refitted_b ? "true]" : "false]"))
       .add("base_vertices", result.base_vertices)
       .add("base_triangles", result.base_triangles)
       .add("seconds_features", result.seconds_features)

@@ -573,6 +573,7 @@ py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, co
   d["flipped"] = py::make_tuple(ab.flipped, ba.flipped);
   d["degenerate"] = py::make_tuple(ab.degenerate, ba.degenerate);
   d["sphere_flipped"] = result.sphere_flipped;
+  d["refitted"] = py::make_tuple(result.refitted_a, result.refitted_b);
   d["stretch_efficiency"] = py::make_tuple(result.efficiency_a, result.efficiency_b);
   d["steiner"] = py::make_tuple(result.steiner_a, result.steiner_b);
   d["restart_dirichlet"] = to_numpy(result.restart_dirichlet);
@@ -999,6 +1000,8 @@ PYBIND11_MODULE(_native, m) {
         "genus 0: 'restart_dirichlet' and 'restart_median_dirichlet', the energies (both directions summed)\n"
         "of each of the `restarts` maps (restart k: layout k % 3 of single pass, carried guides, aligned;\n"
         "seed + k // 3); the one with the lowest median is returned;\n"
+        "'refitted' (genus 0): whether A's map, then B's, was refitted against the other's (kept only when\n"
+        "that lowers the medians);\n"
         "'sphere_flipped', 'stretch_efficiency' and 'steiner' of the two spherical maps (genus 0);\n"
         "'seconds' and per stage. Raises InvalidMeshError for different genus,\n"
         "non-manifold meshes or bad pairs, Cancelled when progress returns False.");

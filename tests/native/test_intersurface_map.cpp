@@ -137,34 +137,47 @@ TEST(IntersurfaceMap, MedianEnergyIsNotMovedByAFewDistortedTriangles) {
   EXPECT_NEAR(one_bad.median_symmetric_dirichlet, 4, 1e-9);
 }
 
-// Three restarts, one per layout of the pair's consistent parameterization.
-// On cactus pose 0 -> 1 (shared vertex order) with 8 features, the aligned
-// layout is the least distorted (measured, summed both ways: means 16.5 /
-// 74.4 / 13.3, medians 8.71 / 11.37 / 8.52) and the nearest the truth: 2.0 %
-// where the single pass alone gives 2.8 %.
-TEST(IntersurfaceMap, CactusRestartsKeepTheAlignedLayout) {
+// Cactus pose 0 -> 1 (shared vertex order) with 8 features. One run: A's
+// map refitted against B's leaves medians 4.42 / 4.51; B's refitted against
+// that lowers them to 4.40 / 4.36, so both refits are kept, and the optimized
+// map is 2.4 % off the truth (2.8 % with A's refit alone).
+TEST(IntersurfaceMap, CactusRefitsBothMapsWhenTheMedianDrops) {
   const TriangleMesh a = read_mesh(shared_mesh("sets/cactus/cactus0.ply"));
   const TriangleMesh b = read_mesh(shared_mesh("sets/cactus/cactus1.ply"));
   std::vector<FeaturePair> features;
   for (int v : test::farthest_points(a, 8)) features.push_back({v, v});
+  const auto error = [&](const IntersurfaceResult& r) {
+    double sum = 0;
+    for (std::size_t v = 0; v < b.vertices.size(); ++v) sum += (r.a_on_b[v] - b.vertices[v]).norm();
+    return sum / (b.vertices.size() * diagonal(b));
+  };
+  const IntersurfaceResult one = intersurface_map(a, b, features);
+  std::printf("cactus 0 -> 1: refitted %d / %d, medians %.3f / %.3f, %.2f %%\n", one.refitted_a, one.refitted_b,
+              one.distortion_a_to_b.median_symmetric_dirichlet, one.distortion_b_to_a.median_symmetric_dirichlet,
+              100 * error(one));
+  EXPECT_TRUE(one.refitted_a);
+  EXPECT_TRUE(one.refitted_b);
+  EXPECT_LT(error(one), 0.026);
+  expect_valid_points(one.a_to_b, b);
+  expect_valid_points(one.b_to_a, a);
+  expect_exact_features(one, a, b);
+  EXPECT_EQ(one.sphere_flipped, 0);
+
+  // Three restarts, one per layout of the pair's consistent
+  // parameterization: the lowest median wins (measured, summed both ways:
+  // 8.49 / 8.38 / 8.52, the carried guides 2.2 % off the truth).
   IntersurfaceOptions options;
   options.restarts = 3;
   const IntersurfaceResult r = intersurface_map(a, b, features, options);
   ASSERT_EQ(r.restart_median_dirichlet.size(), 3u);
   const auto& medians = r.restart_median_dirichlet;
-  std::printf("restart medians %.2f / %.2f / %.2f\n", medians[0], medians[1], medians[2]);
-  EXPECT_EQ(std::min_element(medians.begin(), medians.end()) - medians.begin(), 2);
+  std::printf("restart medians %.2f / %.2f / %.2f, kept %.2f %%\n", medians[0], medians[1], medians[2],
+              100 * error(r));
+  EXPECT_EQ(medians[0],
+            one.distortion_a_to_b.median_symmetric_dirichlet + one.distortion_b_to_a.median_symmetric_dirichlet);
   EXPECT_EQ(r.distortion_a_to_b.median_symmetric_dirichlet + r.distortion_b_to_a.median_symmetric_dirichlet,
-            medians[2]);
-  expect_valid_points(r.a_to_b, b);
-  expect_valid_points(r.b_to_a, a);
-  expect_exact_features(r, a, b);
-  EXPECT_EQ(r.sphere_flipped, 0);
-  double error = 0;
-  for (std::size_t v = 0; v < b.vertices.size(); ++v) error += (r.a_on_b[v] - b.vertices[v]).norm();
-  error /= b.vertices.size() * diagonal(b);
-  std::printf("cactus 0 -> 1, 3 restarts: %.2f %%\n", 100 * error);
-  EXPECT_LT(error, 0.025);
+            *std::min_element(medians.begin(), medians.end()));
+  EXPECT_LT(error(r), 0.025);
 }
 
 TEST(IntersurfaceMap, NoOptimizationKeepsThePlainComposition) {

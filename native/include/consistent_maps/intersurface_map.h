@@ -79,8 +79,9 @@ struct IntersurfaceOptions {
   int optimize_rounds = 2;
   int optimize_sweeps = 20;
   // Genus 0: before that, A's spherical map is computed again with this
-  // weight on its consistency with B's map (0: not at all). With neither,
-  // the result is the plain composition.
+  // weight on its consistency with B's map, then B's with A's, each kept
+  // only if the median energy drops (0: not at all). With neither, the
+  // result is the plain composition.
   double correspondence_weight = 0.25;
   // Genus 0: the whole map is computed this many times and the one with the
   // lowest median symmetric Dirichlet energy (both directions summed) is
@@ -152,6 +153,9 @@ struct IntersurfaceResult {
   // >= 1: the Steiner vertices of the partition and its patches' refinement.
   double efficiency_a = 0, efficiency_b = 0;
   int sphere_flipped = 0;
+  // Genus 0: whether A's map, then B's, was kept refitted against the
+  // other's (IntersurfaceOptions::correspondence_weight).
+  bool refitted_a = false, refitted_b = false;
   int steiner_a = 0, steiner_b = 0;
   // Genus 0: per restart, the final symmetric Dirichlet energy A -> B plus
   // B -> A: the means, and the medians, which choose the restart kept.

@@ -499,17 +499,32 @@ void map_through_sphere_pair(const TriangleMesh& a, const TriangleMesh& b, const
     measure(result.composition_a_to_b, result.composition_b_to_a);
   }
   if (refit) {
-    // A's map again, now also consistent with B's (coarse to fine), kept
-    // only if the map improves (it cannot for a copy of B, mapped exactly).
-    const ParameterizedSurface pb = parameterized_surface(b, map_b);
-    map_a = parameterize_to_locations(members[0], maps.feature_locations, options.sphere, slice(progress, 0.7, 0.8),
-                                      ReferenceMap{&pb.surface, &pb.sphere, options.correspondence_weight});
-    compose();
-    MapDistortion forward, backward;
-    measure(forward, backward);
-    if (!(forward.symmetric_dirichlet + backward.symmetric_dirichlet <
-          result.composition_a_to_b.symmetric_dirichlet + result.composition_b_to_a.symmetric_dirichlet))
-      map_a = maps.members[0];
+    // Each map again, now also consistent with the other's (coarse to fine):
+    // A's against B's, then B's against the new A's. Each is kept only if
+    // the median energy, both directions summed, drops: the means rank maps
+    // by their few worst triangles (and a copy of B is already exact).
+    // Refitting only A left the finer mesh's distortion where the stretch
+    // energy put it (cow - horse B -> A 12.1, medians 5.8 / 5.3; refitting B
+    // too: 6.7, medians 5.2 / 4.8).
+    double median = result.composition_a_to_b.median_symmetric_dirichlet +
+                    result.composition_b_to_a.median_symmetric_dirichlet;
+    for (int side = 0; side < 2; ++side) {
+      ConstrainedResult& map = side == 0 ? map_a : map_b;
+      const ConstrainedResult before = map;
+      const ParameterizedSurface other = side == 0 ? parameterized_surface(b, map_b) : parameterized_surface(a, map_a);
+      map = parameterize_to_locations(members[side], maps.feature_locations, options.sphere,
+                                      slice(progress, 0.7 + 0.05 * side, 0.75 + 0.05 * side),
+                                      ReferenceMap{&other.surface, &other.sphere, options.correspondence_weight});
+      compose();
+      MapDistortion forward, backward;
+      measure(forward, backward);
+      const bool kept = forward.median_symmetric_dirichlet + backward.median_symmetric_dirichlet < median;
+      if (kept)
+        median = forward.median_symmetric_dirichlet + backward.median_symmetric_dirichlet;
+      else
+        map = before;
+      (side == 0 ? result.refitted_a : result.refitted_b) = kept;
+    }
   }
   if (optimize) optimize_composition(a, map_a, b, map_b, result.features, options, slice(progress, 0.8, 0.95));
   result.steiner_a = int(map_a.steiner.size());
