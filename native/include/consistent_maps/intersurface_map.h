@@ -11,7 +11,8 @@
 // maps of two different shapes do not agree between the features, so A's map
 // is computed again with a second energy, the symmetric distortion of its
 // triangles against their images on B, optimized coarse to fine during the
-// refinement as Schreiner et al. 2004 do; then the composition is optimized
+// refinement as Schreiner et al. 2004 do, then B's likewise against A's (each
+// kept only if it lowers the median distortion); then the composition is optimized
 // directly for symmetric distortion in both directions: each mesh's sphere
 // points move so that its triangles map onto the other surface as
 // isometrically as possible, never leaving the kernel of their spherical stars. The result stays
