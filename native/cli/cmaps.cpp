@@ -119,7 +119,7 @@ options:
                      input that has every feature)
   --optimize R       rounds of distortion optimization of the inter-surface map
                      (0..100, default 2; 0 = the plain composition of the
-                     two spherical maps, without A's map refitted to B's)
+                     two spherical maps, neither refitted to the other)
   --restarts K       intersurface, transfer (genus 0): compute the map K times
                      and keep the least distorted (lowest median symmetric
                      Dirichlet energy; 1..100, default 1): restart

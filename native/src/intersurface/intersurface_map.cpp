@@ -472,7 +472,7 @@ void map_through_sphere_pair(const TriangleMesh& a, const TriangleMesh& b, const
   consistent.sphere = options.sphere;
   consistent.grid = options.grid;
   consistent.carry_guides = layout != PairLayout::single_pass;
-  consistent.align = layout == PairLayout::aligned;  // B's map refitted towards A's: A's refit below would repeat it
+  consistent.align = layout == PairLayout::aligned;  // B's map refitted towards A's: the refits below would repeat it
   const ConsistentResult maps = consistent_spherical_parameterization(
       members, consistent, slice(progress, features.size() < 3 ? 0.2 : 0, 0.7));
   result.seconds_parameterize = seconds_since(stage);
@@ -504,8 +504,8 @@ void map_through_sphere_pair(const TriangleMesh& a, const TriangleMesh& b, const
     // the median energy, both directions summed, drops: the means rank maps
     // by their few worst triangles (and a copy of B is already exact).
     // Refitting only A left the finer mesh's distortion where the stretch
-    // energy put it (cow - horse B -> A 12.1, medians 5.8 / 5.3; refitting B
-    // too: 6.7, medians 5.2 / 4.8).
+    // energy put it (cow - horse, final map: B -> A 12.1, medians 5.8 / 5.3;
+    // refitting B too: 6.7, medians 5.2 / 4.8).
     double median = result.composition_a_to_b.median_symmetric_dirichlet +
                     result.composition_b_to_a.median_symmetric_dirichlet;
     for (int side = 0; side < 2; ++side) {
