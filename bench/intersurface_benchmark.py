@@ -69,16 +69,17 @@ def medians(path_a, path_b, out):
 
 def row(name, result, note="", median=(np.nan, np.nan)):
     if result.get("error"):
-        return f"| {name} | {result['faces'][0]} / {result['faces'][1]} | | failed: {result['error']} ||||||||{note} |"
+        return f"| {name} | {result['faces'][0]} / {result['faces'][1]} | | failed: {result['error']} |||||||||{note} |"
     given = result["features"]
     added = len(result["added_features"])
+    balance = f"{result['patch_area_ratio']:.2f}" + (" (balanced)" if result["balanced_patches"] else "")
     return (f"| {name} | {result['faces'][0]} / {result['faces'][1]} | {given} (+{added} listed, "
             f"{result['base_vertices']} base vertices) | {result['base_triangles']} | "
             f"{result['steiner'][0]} / {result['steiner'][1]} | {result['seconds_partition']:.2f} | "
             f"{result['seconds_parameterize'] + result['seconds_optimize'] + result['seconds_locate']:.2f} "
             f"({result['seconds_optimize']:.2f} opt.) | {result['wall']:.1f} | "
             f"{result['symmetric_dirichlet'][0]:.1f} / {result['symmetric_dirichlet'][1]:.1f} | "
-            f"{median[0]:.1f} / {median[1]:.1f} | {result['flipped'][0]} / {result['flipped'][1]} |{note} |")
+            f"{median[0]:.1f} / {median[1]:.1f} | {result['flipped'][0]} / {result['flipped'][1]} | {balance} |{note} |")
 
 
 def main():
@@ -87,10 +88,13 @@ def main():
              "pairs that are Steiner vertices are not listed in `features`). Map seconds: patch "
              "parameterization + local optimization + point location. Symmetric Dirichlet: area-weighted mean over the "
              "source's triangles (what the command reports; a few near-degenerate sampled image triangles dominate "
-             "it) and the median triangle's (from the mapped positions written; optimum 4).", "",
+             "it) and the median triangle's (from the mapped positions written; optimum 4). Patch area ratio: the "
+             "largest ratio of a patch's shares of A's and B's area in the partition used, \"balanced\" when the map "
+             "through the partition with balanced patch areas was kept (partition s includes the balancing, map s "
+             "both maps).", "",
              "| pair | faces | features | base triangles | Steiner A / B | partition s | map s | total s | "
-             "symmetric Dirichlet A->B / B->A | median | flipped samples A->B / B->A | note |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "symmetric Dirichlet A->B / B->A | median | flipped samples A->B / B->A | patch area ratio | note |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     pairs = [("torus", "knot"), ("eight", "skull"), ("kitten", "rocker-arm"), ("kitten", "elk"),
              ("cup", "skull")]
     files = {p.stem: p for p in HIGHER.iterdir()}

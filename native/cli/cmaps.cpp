@@ -873,6 +873,8 @@ void run_intersurface(const Arguments& args, Outcome& out) {
       .add("sphere_flipped", result.sphere_flipped)
       .add_json("refitted", std::string(result.refitted_a ? "[true, " : "[false, ") +
                                 (result.refitted_b ? "true]" : "false]"))
+      .add("balanced_patches", result.balanced_patches)
+      .add("patch_area_ratio", result.patch_area_ratio)
       .add("base_vertices", result.base_vertices)
       .add("base_triangles", result.base_triangles)
       .add("seconds_features", result.seconds_features)

@@ -529,10 +529,13 @@ std::pair<py::array_t<std::int32_t>, py::array_t<double>> to_numpy(const std::ve
 }
 
 py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, const py::handle& pairs_data, int grid,
-                          int optimize, int restarts, bool corner_images, std::uint64_t seed, int effort, int threads,
-                          const py::object& progress) {
+                          int optimize, int restarts, bool corner_images, int balance_rounds, std::uint64_t seed,
+                          int effort, int threads, const py::object& progress) {
   cmaps::IntersurfaceOptions options;
   options.corner_images = corner_images;
+  if (balance_rounds < 0)
+    raise(PyExc_ValueError, "balance_rounds must be at least 0, got " + std::to_string(balance_rounds));
+  options.balance_rounds = balance_rounds;
   if (optimize < 0) raise(PyExc_ValueError, "optimize must be at least 0, got " + std::to_string(optimize));
   if (restarts < 1) raise(PyExc_ValueError, "restarts must be at least 1, got " + std::to_string(restarts));
   options.restarts = restarts;
@@ -574,6 +577,8 @@ py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, co
   d["degenerate"] = py::make_tuple(ab.degenerate, ba.degenerate);
   d["sphere_flipped"] = result.sphere_flipped;
   d["refitted"] = py::make_tuple(result.refitted_a, result.refitted_b);
+  d["balanced_patches"] = result.balanced_patches;
+  d["patch_area_ratio"] = result.patch_area_ratio;
   d["stretch_efficiency"] = py::make_tuple(result.efficiency_a, result.efficiency_b);
   d["steiner"] = py::make_tuple(result.steiner_a, result.steiner_b);
   d["restart_dirichlet"] = to_numpy(result.restart_dirichlet);
@@ -979,8 +984,8 @@ PYBIND11_MODULE(_native, m) {
         "like constrained_spherical_parameterization.");
   m.def("intersurface_map", &intersurface_map, py::arg("mesh_a"), py::arg("mesh_b"),
         py::arg("feature_pairs") = py::list(), py::kw_only(), py::arg("grid") = 64, py::arg("optimize") = 2,
-        py::arg("restarts") = 1, py::arg("corner_images") = false, py::arg("seed") = 1,
-        py::arg("effort") = 1, py::arg("threads") = 2, py::arg("progress") = py::none(),
+        py::arg("restarts") = 1, py::arg("corner_images") = false, py::arg("balance_rounds") = 4,
+        py::arg("seed") = 1, py::arg("effort") = 1, py::arg("threads") = 2, py::arg("progress") = py::none(),
         "Inter-surface map between two meshes of equal genus, closed or with as many holes (genus 0: through a consistent spherical\n"
         "parameterization of both; genus >= 1: through a consistent partition into triangular patches,\n"
         "'base_vertices' and 'base_triangles' of its base mesh, 'seconds_partition'). mesh_a, mesh_b: (vertices, triangles); feature_pairs: (k, 2)\n"
@@ -1002,6 +1007,9 @@ PYBIND11_MODULE(_native, m) {
         "seed + k // 3); the one with the lowest median is returned;\n"
         "'refitted' (genus 0): whether A's map, then B's, was refitted against the other's (kept only when\n"
         "that lowers the medians);\n"
+        "'balanced_patches' (genus >= 1): whether the map went through the partition with its paths moved to\n"
+        "balance corresponding patches' areas (balance_rounds rounds, 0 = not tried; kept only when that lowers the\n"
+        "medians), 'patch_area_ratio': the largest ratio of a patch's shares of A's and B's area in the partition used;\n"
         "'sphere_flipped', 'stretch_efficiency' and 'steiner' of the two spherical maps (genus 0);\n"
         "'seconds' and per stage. Raises InvalidMeshError for different genus,\n"
         "non-manifold meshes or bad pairs, Cancelled when progress returns False.");

@@ -13,6 +13,7 @@
 #include "consistent_maps/intersurface_map.h"
 #include "consistent_maps/mesh_io.h"
 #include "intersurface/consistent_partition.h"
+#include "intersurface/patch_balance.h"
 #include "intersurface/patch_parameterization.h"
 #include "intersurface_expectations.h"
 #include "test_support.h"
@@ -57,14 +58,10 @@ int euler(const std::vector<Triangle>& triangles, const std::vector<int>& faces)
   return int(vertices.size()) - int(edges.size()) + int(faces.size());
 }
 
-class HigherGenusPartition : public ::testing::TestWithParam<Pair> {};
-
-TEST_P(HigherGenusPartition, BaseTriangulationsAgreeAndPatchesEmbedBijectively) {
-  const TriangleMesh a = read_mesh(shared_mesh(GetParam().a)), b = read_mesh(shared_mesh(GetParam().b));
-  const int genus = GetParam().genus;
-  ConsistentPartition p = consistent_partition(a, b, {{0, 0}}, genus);
+// One base triangulation on both sides, paths meeting only at their ends,
+// every patch a disk that embeds bijectively onto its canonical triangle.
+void expect_consistent_partition(ConsistentPartition& p, int genus) {
   ASSERT_EQ(p.sides.size(), 2u);
-
   // One base triangulation, a closed surface of the input's genus: every
   // base edge bounds two base triangles, V - E + F = 2 - 2g.
   const int v = int(p.sides[0].feature_vertex.size()), e = int(p.edges.size()), f = int(p.triangles.size());
@@ -115,6 +112,56 @@ TEST_P(HigherGenusPartition, BaseTriangulationsAgreeAndPatchesEmbedBijectively) 
   }
 }
 
+class HigherGenusPartition : public ::testing::TestWithParam<Pair> {};
+
+TEST_P(HigherGenusPartition, BaseTriangulationsAgreeAndPatchesEmbedBijectively) {
+  const TriangleMesh a = read_mesh(shared_mesh(GetParam().a)), b = read_mesh(shared_mesh(GetParam().b));
+  ConsistentPartition p = consistent_partition(a, b, {{0, 0}}, GetParam().genus);
+  expect_consistent_partition(p, GetParam().genus);
+}
+
+// Per base triangle: its share of the side's area.
+std::vector<double> area_shares(const PartitionSide& side, int patches) {
+  std::vector<double> share(patches, 0);
+  double total = 0;
+  for (int f = 0; f < int(side.patch.size()); ++f) {
+    const Triangle& t = side.mesh.triangles()[f];
+    const double area = 0.5 * (side.mesh.position(t[1]) - side.mesh.position(t[0]))
+                                  .cross(side.mesh.position(t[2]) - side.mesh.position(t[0]))
+                                  .norm();
+    share[side.patch[f]] += area, total += area;
+  }
+  for (double& s : share) s /= total;
+  return share;
+}
+
+// The kitten and the rocker arm partitioned from one pair: one base triangle
+// covers 1.3 % of the kitten and 48 % of the rocker arm. Balancing moves the
+// paths until every patch takes about the same share of both, and the
+// partition stays consistent.
+TEST(PatchBalance, KittenAndRockerArmPatchesTakeEqualShares) {
+  const TriangleMesh a = read_mesh(shared_mesh("higher-genus/kitten.off"));
+  const TriangleMesh b = read_mesh(shared_mesh("higher-genus/rocker-arm.obj"));
+  ConsistentPartition p = consistent_partition(a, b, {{0, 0}}, 1);
+  const int patches = int(p.triangles.size());
+  const auto worst = [&] {
+    const std::vector<double> sa = area_shares(p.sides[0], patches), sb = area_shares(p.sides[1], patches);
+    double ratio = 1;
+    for (int t = 0; t < patches; ++t) ratio = std::max({ratio, sa[t] / sb[t], sb[t] / sa[t]});
+    return ratio;
+  };
+  const double before = worst();
+  const std::vector<std::vector<int>> paths_before = {p.sides[0].paths.begin(), p.sides[0].paths.end()};
+  const PatchBalance balance = balance_patch_areas(p, 4);
+  EXPECT_GT(before, 5.0);
+  EXPECT_NEAR(balance.worst_before, before, 1e-9);
+  EXPECT_NEAR(balance.worst_after, worst(), 1e-9);
+  EXPECT_LT(balance.worst_after, 1.5);
+  EXPECT_GT(balance.retraced, 0);
+  EXPECT_NE(p.sides[0].paths, paths_before);
+  expect_consistent_partition(p, 1);
+}
+
 // Mean distance, relative to the source's diagonal, of its vertices from
 // their round trip (the reverse map's images interpolated at the images).
 double round_trip(const TriangleMesh& source, const TriangleMesh& target, const std::vector<SurfacePoint>& there,
@@ -159,6 +206,31 @@ TEST_P(HigherGenusMap, ZeroFeaturesGetAValidMap) {
   expect_valid_points(r.b_to_a, a);
   expect_exact_features(r, a, b);
   EXPECT_LT(round_trip(a, b, r.a_to_b, r.b_on_a), kRoundTrip);
+}
+
+// With balanced patches the kitten - rocker arm map is far less distorted
+// over most of both surfaces (summed medians measured 330 -> 29), and still
+// a valid, invertible map with exact features; without rounds the partition
+// stays as traced.
+TEST(HigherGenusMap, BalancedPatchesLowerTheMediansOfDifferentShapes) {
+  const TriangleMesh a = read_mesh(shared_mesh("higher-genus/kitten.off"));
+  const TriangleMesh b = read_mesh(shared_mesh("higher-genus/rocker-arm.obj"));
+  IntersurfaceOptions as_traced;
+  as_traced.balance_rounds = 0;
+  const IntersurfaceResult plain = intersurface_map(a, b, {}, as_traced), r = intersurface_map(a, b, {});
+  const auto median = [](const IntersurfaceResult& x) {
+    return x.distortion_a_to_b.median_symmetric_dirichlet + x.distortion_b_to_a.median_symmetric_dirichlet;
+  };
+  EXPECT_FALSE(plain.balanced_patches);
+  EXPECT_GT(plain.patch_area_ratio, 5.0);
+  EXPECT_TRUE(r.balanced_patches);
+  EXPECT_LT(r.patch_area_ratio, 1.5);
+  EXPECT_LT(median(r), median(plain) / 3);
+  expect_valid_points(r.a_to_b, b);
+  expect_valid_points(r.b_to_a, a);
+  expect_exact_features(r, a, b);
+  EXPECT_LT(round_trip(a, b, r.a_to_b, r.b_on_a), kRoundTrip);
+  EXPECT_LT(round_trip(b, a, r.b_to_a, r.a_on_b), kRoundTrip);
 }
 
 // A mesh and a copy with its vertices listed in another order: the same

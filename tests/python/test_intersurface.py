@@ -168,6 +168,16 @@ def test_genus_one_map(native):
     expect_valid(r["b_to_a_triangle"], r["b_to_a_barycentric"], a[1])
     expect_exact(r, a, b)
     assert r["seconds_partition"] > 0
+    # The partition as traced (no balancing rounds) is the one reported unless balancing lowered the medians.
+    plain = native.intersurface_map(a, b, [[0, 7]], balance_rounds=0)
+    assert plain["balanced_patches"] is False and plain["patch_area_ratio"] >= 1
+    if not r["balanced_patches"]:
+        assert r["patch_area_ratio"] == plain["patch_area_ratio"]
+        assert (r["a_to_b_triangle"] == plain["a_to_b_triangle"]).all()
+    else:
+        assert sum(r["median_symmetric_dirichlet"]) < sum(plain["median_symmetric_dirichlet"])
+    with pytest.raises(ValueError, match="balance_rounds must be at least 0, got -1"):
+        native.intersurface_map(a, b, [[0, 7]], balance_rounds=-1)
 
 
 def holed(mesh, centres):
@@ -331,6 +341,7 @@ def test_cli_genus_one(cmaps_binary, native, tmp_path):
     report = json.loads(result.stdout)
     assert report["error"] is None and report["genus"] == 1 and report["features"] == 2
     assert report["base_triangles"] > 0 and report["seconds_partition"] > 0
+    assert report["patch_area_ratio"] >= 1 and report["balanced_patches"] in (True, False)
     expect_written_maps(out, a, b)
     triangles, weights = read_points(out / "A_to_B.txt")
     assert weights[1000][list(b[1][triangles[1000]]).index(500)] == 1  # the given pair maps exactly

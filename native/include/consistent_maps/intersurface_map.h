@@ -37,9 +37,13 @@
 // a vertex of A maps to the point of B with the same canonical coordinates.
 // Paths on B are kept near A's paths with B brought into A's frame by a
 // transform fitted to the pairs (intersurface/path_guide.h), so that the
-// handles' cycles correspond for meshes posed alike. Continuous and
-// bijective; A's embedding is locally optimized (no progressive-mesh
-// refinement). With zero pairs, one pair is chosen: A's vertex farthest from
+// handles' cycles correspond for meshes posed alike. Paths traced on two
+// different shapes can give a patch a far larger share of one surface than
+// of the other, which no map inside the patches undoes; so the map is also
+// computed through a partition whose paths are moved to balance the patches'
+// areas (intersurface/patch_balance.h), and kept if that lowers the median
+// distortion. Continuous and bijective; A's embedding is locally optimized
+// (no progressive-mesh refinement). With zero pairs, one pair is chosen: A's vertex farthest from
 // its centroid and B's vertex nearest it with centroids and areas matched.
 // Holes (thesis 5.4, boundaries): each is closed by a fan around a temporary
 // centre, holes are paired (by pairs on their rims, else by nearest centres
@@ -100,6 +104,11 @@ struct IntersurfaceOptions {
   // a_corners_to_b, b_corners_to_a), for transferring per-corner values such
   // as texture coordinates.
   bool corner_images = false;
+  // Genus >= 1: rounds of moving the partition's paths so that corresponding
+  // patches take equal shares of their surfaces (intersurface/patch_balance.h);
+  // the map through the moved partition is kept only if its summed median
+  // symmetric Dirichlet energy is lower. 0: the partition as traced.
+  int balance_rounds = 4;
 };
 
 // How far the point of a triangle next to a corner (corner images) lies
@@ -158,12 +167,18 @@ struct IntersurfaceResult {
   // other's (IntersurfaceOptions::correspondence_weight).
   bool refitted_a = false, refitted_b = false;
   int steiner_a = 0, steiner_b = 0;
+  // Genus >= 1: whether the map went through the partition with balanced
+  // patch areas (IntersurfaceOptions::balance_rounds), and the largest ratio
+  // between a patch's shares of A's and of B's area in the partition used
+  // (1: every patch takes the same share of both).
+  bool balanced_patches = false;
+  double patch_area_ratio = 1;
   // Genus 0: per restart, the final symmetric Dirichlet energy A -> B plus
   // B -> A: the means, and the medians, which choose the restart kept.
   std::vector<double> restart_dirichlet, restart_median_dirichlet;
   MapDistortion composition_a_to_b, composition_b_to_a;
   // Wall time per stage: unconstrained maps for added features (genus 0),
-  // the consistent partition (genus >= 1), the consistent or patch
+  // the consistent partition and its balancing (genus >= 1), the consistent or patch
   // parameterization, the distortion optimization, point location and
   // conversion, measures.
   double seconds_features = 0, seconds_partition = 0, seconds_parameterize = 0, seconds_optimize = 0,

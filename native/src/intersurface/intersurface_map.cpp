@@ -24,6 +24,7 @@
 #include "intersurface/sphere_pair.h"
 #include "intersurface/symmetric_dirichlet.h"
 #include "intersurface/consistent_partition.h"
+#include "intersurface/patch_balance.h"
 #include "intersurface/patch_map_optimization.h"
 #include "intersurface/patch_parameterization.h"
 #include "intersurface/path_guide.h"
@@ -316,6 +317,58 @@ int farthest_from_centroid(const TriangleMesh& mesh) {
   return best;
 }
 
+// Genus >= 1: the map through one consistent partition of the closed
+// meshes (patch embeddings, their optimization, point location), measured.
+void map_partition(ConsistentPartition& partition, const ClosedMesh& closed_a, const ClosedMesh& closed_b,
+                   const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResult& result,
+                   const IntersurfaceOptions& options, const ProgressCallback& progress) {
+  auto stage = Clock::now();
+  if (progress && !progress(0, "parameterizing patches")) throw Cancelled();
+  PatchParameterization uv_a = parameterize_patches(partition.sides[0], partition);
+  const PatchParameterization uv_b = parameterize_patches(partition.sides[1], partition);
+  result.seconds_parameterize = seconds_since(stage);
+
+  stage = Clock::now();
+  if (progress && !progress(0.3, "optimizing the map")) throw Cancelled();
+  optimize_patch_map(partition.sides[0], uv_a, partition.sides[1], uv_b,
+                     options.optimize_rounds > 0 ? options.optimize_sweeps : 0, options.sphere.threads);
+  result.seconds_optimize = seconds_since(stage);
+
+  stage = Clock::now();
+  if (progress && !progress(0.7, "locating vertices on the other mesh")) throw Cancelled();
+  const int threads = options.sphere.threads;
+  const auto convert = [](const std::vector<InputLocation>& located) {
+    std::vector<SurfacePoint> points(located.size());
+    for (std::size_t i = 0; i < located.size(); ++i) points[i] = {located[i].triangle, located[i].barycentric};
+    return points;
+  };
+  const PartitionSide &side_a = partition.sides[0], &side_b = partition.sides[1];
+  const TriangleMesh &ca = closed_a.mesh, &cb = closed_b.mesh;
+  // The surfaces' own points only (no hole centre, no fan corner); none lands in a fan.
+  const auto surface_only = [&](std::vector<SurfacePoint> points, std::size_t count, const TriangleMesh& target) {
+    points.resize(count);
+    for (const SurfacePoint& p : points)
+      if (p.triangle >= int(target.triangles.size())) throw Error("internal error: a surface point maps into a hole");
+    return points;
+  };
+  result.a_to_b = surface_only(convert(map_vertices(side_a, uv_a, side_b, uv_b, cb, threads)), a.vertices.size(), b);
+  result.b_to_a = surface_only(convert(map_vertices(side_b, uv_b, side_a, uv_a, ca, threads)), b.vertices.size(), a);
+  if (options.corner_images) {
+    result.a_corners_to_b =
+        surface_only(convert(map_corners(side_a, uv_a, side_b, uv_b, ca, cb, threads)), 3 * a.triangles.size(), b);
+    result.b_corners_to_a =
+        surface_only(convert(map_corners(side_b, uv_b, side_a, uv_a, cb, ca, threads)), 3 * b.triangles.size(), a);
+  }
+  result.a_on_b = surface_positions(b, result.a_to_b);
+  result.b_on_a = surface_positions(a, result.b_to_a);
+  result.seconds_locate = seconds_since(stage);
+
+  stage = Clock::now();
+  result.distortion_a_to_b = result.composition_a_to_b = measure_intersurface_map(a, b, result.a_to_b);
+  result.distortion_b_to_a = result.composition_b_to_a = measure_intersurface_map(b, a, result.b_to_a);
+  result.seconds_measure = seconds_since(stage);
+}
+
 // Genus >= 1: the direct map through a consistent partition.
 void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResult& result,
                          const IntersurfaceOptions& options, const ProgressCallback& progress) {
@@ -355,49 +408,33 @@ void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, Intersurf
   stage = Clock::now();
   if (progress && !progress(0.05, "partitioning")) throw Cancelled();
   ConsistentPartition partition = consistent_partition(closed_a.mesh, b_like_a, pairs, result.genus, holes);
+  // The map through the partition as traced, and through one with its paths
+  // moved to balance the patches' areas (when any moved): the lower summed
+  // median distortion wins, as for genus 0's restarts.
+  ConsistentPartition balanced = partition;
+  const PatchBalance balance = balance_patch_areas(balanced, options.balance_rounds);
   result.seconds_partition = seconds_since(stage);
-
-  stage = Clock::now();
-  if (progress && !progress(0.6, "parameterizing patches")) throw Cancelled();
-  PatchParameterization uv_a = parameterize_patches(partition.sides[0], partition);
-  const PatchParameterization uv_b = parameterize_patches(partition.sides[1], partition);
-  result.seconds_parameterize = seconds_since(stage);
-
-  stage = Clock::now();
-  if (progress && !progress(0.7, "optimizing the map")) throw Cancelled();
-  optimize_patch_map(partition.sides[0], uv_a, partition.sides[1], uv_b,
-                     options.optimize_rounds > 0 ? options.optimize_sweeps : 0,
-                     options.sphere.threads);
-  result.seconds_optimize = seconds_since(stage);
-
-  stage = Clock::now();
-  if (progress && !progress(0.8, "locating vertices on the other mesh")) throw Cancelled();
-  const int threads = options.sphere.threads;
-  const auto convert = [](const std::vector<InputLocation>& located) {
-    std::vector<SurfacePoint> points(located.size());
-    for (std::size_t i = 0; i < located.size(); ++i) points[i] = {located[i].triangle, located[i].barycentric};
-    return points;
-  };
-  const PartitionSide &side_a = partition.sides[0], &side_b = partition.sides[1];
-  const TriangleMesh &ca = closed_a.mesh, &cb = closed_b.mesh;
-  // The surfaces' own points only (no hole centre, no fan corner); none lands in a fan.
-  const auto surface_only = [&](std::vector<SurfacePoint> points, std::size_t count, const TriangleMesh& target) {
-    points.resize(count);
-    for (const SurfacePoint& p : points)
-      if (p.triangle >= int(target.triangles.size())) throw Error("internal error: a surface point maps into a hole");
-    return points;
-  };
-  result.a_to_b = surface_only(convert(map_vertices(side_a, uv_a, side_b, uv_b, cb, threads)), a.vertices.size(), b);
-  result.b_to_a = surface_only(convert(map_vertices(side_b, uv_b, side_a, uv_a, ca, threads)), b.vertices.size(), a);
-  if (options.corner_images) {
-    result.a_corners_to_b =
-        surface_only(convert(map_corners(side_a, uv_a, side_b, uv_b, ca, cb, threads)), 3 * a.triangles.size(), b);
-    result.b_corners_to_a =
-        surface_only(convert(map_corners(side_b, uv_b, side_a, uv_a, cb, ca, threads)), 3 * b.triangles.size(), a);
+  map_partition(partition, closed_a, closed_b, a, b, result, options, slice(progress, 0.6, balance.retraced ? 0.8 : 1));
+  result.patch_area_ratio = balance.worst_before;
+  if (balance.retraced > 0) {
+    IntersurfaceResult moved = result;
+    map_partition(balanced, closed_a, closed_b, a, b, moved, options, slice(progress, 0.8, 1));
+    const auto median = [](const IntersurfaceResult& r) {
+      return r.distortion_a_to_b.median_symmetric_dirichlet + r.distortion_b_to_a.median_symmetric_dirichlet;
+    };
+    const bool better = median(moved) < median(result);
+    IntersurfaceResult &kept = better ? moved : result, &dropped = better ? result : moved;
+    kept.seconds_parameterize += dropped.seconds_parameterize;
+    kept.seconds_optimize += dropped.seconds_optimize;
+    kept.seconds_locate += dropped.seconds_locate;
+    kept.seconds_measure += dropped.seconds_measure;
+    if (better) {
+      result = std::move(moved);
+      result.balanced_patches = true;
+      result.patch_area_ratio = balance.worst_after;
+      partition = std::move(balanced);
+    }
   }
-  result.a_on_b = surface_positions(b, result.a_to_b);
-  result.b_on_a = surface_positions(a, result.b_to_a);
-  result.seconds_locate = seconds_since(stage);
 
   const std::vector<int>&fa = partition.sides[0].feature_vertex, &fb = partition.sides[1].feature_vertex;
   result.features.clear();
@@ -407,8 +444,8 @@ void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, Intersurf
   result.added_features = int(result.features.size()) - given;
   result.base_vertices = int(fa.size());
   result.base_triangles = int(partition.triangles.size());
-  result.steiner_a = partition.sides[0].mesh.vertex_count() - int(ca.vertices.size());
-  result.steiner_b = partition.sides[1].mesh.vertex_count() - int(cb.vertices.size());
+  result.steiner_a = partition.sides[0].mesh.vertex_count() - int(closed_a.mesh.vertices.size());
+  result.steiner_b = partition.sides[1].mesh.vertex_count() - int(closed_b.mesh.vertices.size());
 }
 
 // Vertices no triangle uses (the teapot has 4) carry no surface: the map is
@@ -671,10 +708,6 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
   result.features = features;
   if (genus_a > 0) {
     map_through_patches(a, b, result, options, progress);
-    const auto stage = Clock::now();
-    result.distortion_a_to_b = result.composition_a_to_b = measure_intersurface_map(a, b, result.a_to_b);
-    result.distortion_b_to_a = result.composition_b_to_a = measure_intersurface_map(b, a, result.b_to_a);
-    result.seconds_measure = seconds_since(stage);
     if (progress && !progress(1, "done")) throw Cancelled();
     result.seconds = seconds_since(start);
     return result;

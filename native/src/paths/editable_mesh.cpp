@@ -67,17 +67,17 @@ void EditableMesh::replace_edge_face(int a, int b, int old_face, int new_face) {
   std::replace(faces.begin(), faces.end(), old_face, new_face);
 }
 
-int EditableMesh::split_edge(int e) {
+int EditableMesh::split_edge(int e, double at) {
   const auto [a, b] = edge_vertices_[e];
   const auto [f1, f2] = edge_faces_[e];
   const int m = vertex_count();
-  positions_.push_back(0.5 * (positions_[a] + positions_[b]));
-  // The midpoint's input-surface coordinates: average those of a and b, which
+  positions_.push_back((1 - at) * positions_[a] + at * positions_[b]);
+  // The new vertex's input-surface coordinates: blend those of a and b, which
   // always lie in one input triangle (edges never leave input triangles).
   std::map<int, double> combination;
-  for (int v : {a, b})
+  for (const auto& [v, share] : {std::pair<int, double>{a, 1 - at}, {b, at}})
     for (int k = 0; k < 3; ++k)
-      if (origins_[v].vertices[k] >= 0) combination[origins_[v].vertices[k]] += 0.5 * origins_[v].weights[k];
+      if (origins_[v].vertices[k] >= 0) combination[origins_[v].vertices[k]] += share * origins_[v].weights[k];
   if (combination.size() > 3) throw Error("internal error: Steiner vertex outside one input triangle");
   InputPoint point;
   int slot = 0;

@@ -36,8 +36,9 @@ class EditableMesh {
   // The input triangle a triangle lies in (splits never cross input edges).
   int input_triangle(int f) const { return input_triangle_[f]; }
 
-  // Inserts a vertex at the midpoint of edge e, splitting its two triangles.
-  int split_edge(int e);
+  // Inserts a vertex on edge e, `at` of the way from its first vertex
+  // (edge_vertices(e)[0]) to its second, splitting its two triangles.
+  int split_edge(int e, double at = 0.5);
 
  private:
   static std::uint64_t key(int a, int b);
