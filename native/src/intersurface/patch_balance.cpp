@@ -12,8 +12,11 @@
 namespace cmaps {
 namespace {
 
-constexpr double kTolerance = 0.5;  // two patches whose area ratios differ by less than this factor - 1 stay
-constexpr double kEdgeClamp = 0.1;   // a new path vertex lies no nearer an edge's ends than this fraction
+constexpr double kTolerance = 0.5;    // two patches whose area ratios differ by less than this factor - 1 stay
+constexpr double kEdgeClamp = 0.1;    // a new path vertex lies no nearer an edge's ends than this fraction
+// Levels stay this far from 0 and 1: where one patch's far sides leave most
+// of the two patches near one value, lower levels give paths that hug the
+// other sides (kitten - rocker arm medians 16 / 14 -> 51 / 73 with 1e-12).
 constexpr double kLevelMargin = 1e-3;
 constexpr int kBisections = 40;
 
