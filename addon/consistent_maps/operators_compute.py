@@ -20,9 +20,10 @@ def _leave_edit_mode(context, objects):
 def _summary(stats):
     first = next(iter(stats.values()))
     if "genus" in first:
-        distortion = ", ".join(f"{s['symmetric_dirichlet']:.1f}" for s in stats.values())
+        median = ", ".join(f"{s['median_symmetric_dirichlet']:.1f}" for s in stats.values())
+        mean = ", ".join(f"{s['symmetric_dirichlet']:.1f}" for s in stats.values())
         return (f"Mapped 2 objects of genus {first['genus']} onto each other in {first['seconds']:.1f} s "
-                f"(symmetric Dirichlet {distortion}, best 4)")
+                f"(symmetric Dirichlet median {median}, mean {mean}; best 4)")
     worst = min(s["efficiency"] for s in stats.values())
     seconds = sum(s["seconds"] for s in stats.values())
     return f"Mapped {len(stats)} object(s) onto the sphere in {seconds:.1f} s (lowest efficiency {worst:.3f})"

@@ -181,10 +181,10 @@ class CM_PT_results(_Panel, bpy.types.Panel):
                 row.label(text="not computed")
                 continue
             quality = (f"{stats['efficiency']:.3f}" if "efficiency" in stats
-                       else f"genus {stats.get('genus')}, {stats.get('symmetric_dirichlet', 0):.1f}")
+                       else f"genus {stats.get('genus')}, {stats.get('median_symmetric_dirichlet', 0):.1f}")
             row.label(text=f"{quality}, {stats['seconds']:.1f} s" + ("" if stats.get("bijective") else ", FLIPS"))
         if objects:
-            column.label(text="Efficiency (best 1) or genus, distortion (best 4); time")
+            column.label(text="Efficiency (best 1) or genus, median distortion (best 4); time")
         row = layout.row(align=True)
         row.operator("consistent_maps.sphere_preview", text="Sphere", icon='SPHERE').show = True
         row.operator("consistent_maps.sphere_preview", text="Shape", icon='MESH_DATA').show = False

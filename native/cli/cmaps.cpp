@@ -87,7 +87,10 @@ commands:
            source's faces and vertex order, positions mapped onto the other
            surface). Without --features (or with fewer than 3 pairs) pairs are
            added automatically. The map is optimized for symmetric distortion
-           (--optimize rounds, each moving A's vertices then B's).
+           (--optimize rounds, each moving A's vertices then B's); genus >= 1
+           maps also go through the partition with its patches' areas
+           balanced, kept when that lowers the median distortion (JSON:
+           balanced_patches, patch_area_ratio).
   transfer map TARGET onto SOURCE as `intersurface` does and write OUT.obj:
            TARGET's faces and vertex order with SOURCE's vertex colours
            ("v x y z r g b") and texture coordinates (vt, per face corner: a
