@@ -156,6 +156,7 @@ TEST(PatchBalance, KittenAndRockerArmPatchesTakeEqualShares) {
   EXPECT_GT(before, 5.0);
   EXPECT_NEAR(balance.worst_before, before, 1e-9);
   EXPECT_NEAR(balance.worst_after, worst(), 1e-9);
+  EXPECT_NEAR(patch_area_ratio(p), worst(), 1e-9);
   EXPECT_LT(balance.worst_after, 1.5);
   EXPECT_GT(balance.retraced, 0);
   EXPECT_NE(p.sides[0].paths, paths_before);

@@ -180,7 +180,8 @@ struct IntersurfaceResult {
   // Wall time per stage: unconstrained maps for added features (genus 0),
   // the consistent partition and its balancing (genus >= 1), the consistent or patch
   // parameterization, the distortion optimization, point location and
-  // conversion, measures.
+  // conversion, measures (genus >= 1: summed over both maps when the
+  // balanced partition was mapped too).
   double seconds_features = 0, seconds_partition = 0, seconds_parameterize = 0, seconds_optimize = 0,
          seconds_locate = 0, seconds_measure = 0, seconds = 0;
 };

@@ -410,19 +410,32 @@ void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, Intersurf
   ConsistentPartition partition = consistent_partition(closed_a.mesh, b_like_a, pairs, result.genus, holes);
   // The map through the partition as traced, and through one with its paths
   // moved to balance the patches' areas (when any moved): the lower summed
-  // median distortion wins, as for genus 0's restarts.
+  // median distortion wins, as for genus 0's restarts. Balancing is an
+  // improvement the traced partition can do without: if it fails, that serves.
+  result.patch_area_ratio = patch_area_ratio(partition);
   ConsistentPartition balanced = partition;
-  const PatchBalance balance = balance_patch_areas(balanced, options.balance_rounds);
+  int retraced = 0;
+  try {
+    retraced = balance_patch_areas(balanced, options.balance_rounds).retraced;
+  } catch (const Error&) {
+    // retraced stays 0: the partition as traced serves
+  }
   result.seconds_partition = seconds_since(stage);
-  map_partition(partition, closed_a, closed_b, a, b, result, options, slice(progress, 0.6, balance.retraced ? 0.8 : 1));
-  result.patch_area_ratio = balance.worst_before;
-  if (balance.retraced > 0) {
+  map_partition(partition, closed_a, closed_b, a, b, result, options, slice(progress, 0.6, retraced ? 0.8 : 1));
+  if (retraced > 0) {
     IntersurfaceResult moved = result;
-    map_partition(balanced, closed_a, closed_b, a, b, moved, options, slice(progress, 0.8, 1));
+    bool mapped = true;
+    try {
+      map_partition(balanced, closed_a, closed_b, a, b, moved, options, slice(progress, 0.8, 1));
+    } catch (const Cancelled&) {
+      throw;
+    } catch (const Error&) {
+      mapped = false;
+    }
     const auto median = [](const IntersurfaceResult& r) {
       return r.distortion_a_to_b.median_symmetric_dirichlet + r.distortion_b_to_a.median_symmetric_dirichlet;
     };
-    const bool better = median(moved) < median(result);
+    const bool better = mapped && median(moved) < median(result);
     IntersurfaceResult &kept = better ? moved : result, &dropped = better ? result : moved;
     kept.seconds_parameterize += dropped.seconds_parameterize;
     kept.seconds_optimize += dropped.seconds_optimize;
@@ -431,7 +444,7 @@ void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, Intersurf
     if (better) {
       result = std::move(moved);
       result.balanced_patches = true;
-      result.patch_area_ratio = balance.worst_after;
+      result.patch_area_ratio = patch_area_ratio(balanced);
       partition = std::move(balanced);
     }
   }

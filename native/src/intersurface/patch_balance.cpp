@@ -255,6 +255,11 @@ class PathRetrace {
 
 }  // namespace
 
+double patch_area_ratio(const ConsistentPartition& partition) {
+  const int patches = int(partition.triangles.size());
+  return worst_ratio(area_shares(partition.sides[0], patches), area_shares(partition.sides[1], patches));
+}
+
 PatchBalance balance_patch_areas(ConsistentPartition& partition, int rounds) {
   const int patches = int(partition.triangles.size());
   std::vector<std::array<int, 2>> beside(partition.edges.size(), {-1, -1});

@@ -21,6 +21,10 @@ struct PatchBalance {
   int retraced = 0;                          // paths traced again (one side each)
 };
 
+// The largest ratio between a patch's shares of the two sides' areas (1:
+// every patch takes the same share of both; a hole's fan counts nothing).
+double patch_area_ratio(const ConsistentPartition& partition);
+
 // Moves paths of both sides (their meshes gain Steiner vertices where the
 // new paths cross edges), `rounds` times over every path whose two patches'
 // area ratios differ by more than half between the sides. Paths between two
