@@ -80,6 +80,7 @@ class PathRetrace {
     for (int f = 0; f < int(side.patch.size()); ++f)
       if (side.patch[f] == first || side.patch[f] == second) {
         faces_.push_back(f);
+        areas_.push_back(triangle_area(side, f));
         for (int v : side.mesh.triangles()[f])
           if (!boundary.count(v) && !is_end(v) && !interior_.count(v)) interior_.emplace(v, int(interior_.size()));
       }
@@ -199,12 +200,11 @@ class PathRetrace {
   // The share of the two patches' area below level t.
   double below(double t) const {
     double under = 0, total = 0;
-    for (int f : faces_) {
-      const double area = triangle_area(side_, f);
-      const Triangle& tri = side_.mesh.triangles()[f];
+    for (std::size_t i = 0; i < areas_.size(); ++i) {
+      const Triangle& tri = side_.mesh.triangles()[faces_[i]];
       double d[3];
-      for (int k = 0; k < 3; ++k) d[k] = value(f, tri[k], t) - t;
-      under += area * share_below(d), total += area;
+      for (int k = 0; k < 3; ++k) d[k] = value(faces_[i], tri[k], t) - t;
+      under += areas_[i] * share_below(d), total += areas_[i];
     }
     return under / total;
   }
@@ -248,7 +248,8 @@ class PathRetrace {
   PartitionSide& side_;
   int edge_, first_, second_;
   std::array<int, 2> ends_{};
-  std::vector<int> faces_;
+  std::vector<int> faces_;     // the two patches' triangles (after a retrace, the new ones too)
+  std::vector<double> areas_;  // per triangle of faces_ before the retrace
   std::unordered_map<int, int> interior_;  // mesh vertex -> unknown
   Eigen::VectorXd phi0_, psi_;
 };
