@@ -45,10 +45,10 @@ const char* const kUsage = R"(usage:
                     [--seed N] [--effort 0|1|2] [--threads N] [--json]
   cmaps consistent IN IN ... --features FILE -o DIR [--remesh N] [--grid N] [--first K] [--restarts K]
                    [--align] [--seed N] [--effort 0|1|2] [--threads N] [--json]
-  cmaps intersurface A B [--features FILE] -o DIR [--optimize R] [--restarts K] [--seed N] [--effort 0|1|2]
-                     [--threads N] [--json]
-  cmaps transfer SOURCE TARGET [--features FILE] -o OUT.obj [--positions] [--optimize R] [--restarts K]
-                 [--seed N] [--effort 0|1|2] [--threads N] [--json]
+  cmaps intersurface A B [--features FILE] -o DIR [--method auto|sphere|partition] [--optimize R]
+                     [--restarts K] [--seed N] [--effort 0|1|2] [--threads N] [--json]
+  cmaps transfer SOURCE TARGET [--features FILE] -o OUT.obj [--positions] [--method auto|sphere|partition]
+                 [--optimize R] [--restarts K] [--seed N] [--effort 0|1|2] [--threads N] [--json]
   cmaps --help | --version
 
 commands:
@@ -76,9 +76,10 @@ commands:
            DIR/<k>.normals.npy and DIR/remesh_features.json (name -> remesh
            vertex). Nothing is written unless the whole computation succeeds.
   intersurface
-           map two closed meshes of the same genus onto each other (genus 0
-           through a common sphere, genus >= 1 through a consistent partition
-           into patches), each feature of A exactly onto its partner on B.
+           map two closed meshes of the same genus onto each other (genus >= 1
+           through a consistent partition into patches; genus 0 that way and
+           through a common sphere, keeping the less distorted, see --method),
+           each feature of A exactly onto its partner on B.
            Genus-0 meshes may have holes, each ringed by at least 3 features
            (the same pairs around corresponding holes). Writes
            DIR/A_to_B.txt and DIR/B_to_A.txt (one line per source vertex: the
@@ -123,6 +124,13 @@ options:
   --optimize R       rounds of distortion optimization of the inter-surface map
                      (0..100, default 2; 0 = the plain composition of the
                      two spherical maps, neither refitted to the other)
+  --method M         intersurface, transfer (genus 0): map through the common
+                     sphere, directly through a consistent partition as for
+                     genus >= 1, or auto (default): both, keeping the lower
+                     median distortion (JSON: method, sphere_median_dirichlet,
+                     partition_median_dirichlet). The direct map follows
+                     shapes that are alike (poses of one shape); the sphere
+                     spreads the distortion between different shapes.
   --restarts K       intersurface, transfer (genus 0): compute the map K times
                      and keep the least distorted (lowest median symmetric
                      Dirichlet energy; 1..100, default 1): restart
@@ -160,6 +168,7 @@ struct Arguments {
   bool remesh_given = false, grid_given = false, first_given = false;
   int optimize = 2, restarts = 1;  // optimize: intersurface and transfer only
   bool optimize_given = false, restarts_given = false;
+  std::string method;  // intersurface and transfer only: auto, sphere or partition
   std::uint64_t seed = 1;
   int effort = 1;
   int threads = 2;
@@ -205,6 +214,11 @@ Arguments parse(const std::vector<std::string>& args) {
     else if (arg == "--first") a.first = int(parse_integer(arg, value(), 0, 1 << 20)), a.first_given = true;
     else if (arg == "--optimize") a.optimize = int(parse_integer(arg, value(), 0, 100)), a.optimize_given = true;
     else if (arg == "--restarts") a.restarts = int(parse_integer(arg, value(), 1, 100)), a.restarts_given = true;
+    else if (arg == "--method") {
+      a.method = value();
+      if (a.method != "auto" && a.method != "sphere" && a.method != "partition")
+        throw UsageError("--method expects auto, sphere or partition, got '" + a.method + "'");
+    }
     else if (arg.size() > 1 && arg[0] == '-') throw UsageError("unknown option '" + arg + "' (see cmaps --help)");
     else if (a.command.empty()) a.command = arg;
     else if (a.inputs.empty() || a.command == "consistent" || a.command == "intersurface" || a.command == "transfer")
@@ -228,6 +242,8 @@ Arguments parse(const std::vector<std::string>& args) {
     throw UsageError(a.command + " takes no --optimize (only intersurface and transfer do)");
   if (a.restarts_given && a.command != "intersurface" && a.command != "transfer" && a.command != "consistent")
     throw UsageError(a.command + " takes no --restarts (only consistent, intersurface and transfer do)");
+  if (!a.method.empty() && a.command != "intersurface" && a.command != "transfer")
+    throw UsageError(a.command + " takes no --method (only intersurface and transfer do)");
   if (a.positions && a.command != "transfer") throw UsageError(a.command + " takes no --positions (only transfer does)");
   if (a.align && a.command != "consistent") throw UsageError(a.command + " takes no --align (only consistent does)");
   if (a.command != "consistent") {
@@ -823,6 +839,9 @@ cmaps::IntersurfaceOptions intersurface_options(const Arguments& args) {
   options.optimize_rounds = args.optimize;
   if (args.optimize == 0) options.correspondence_weight = 0;  // the plain composition
   options.restarts = args.restarts;
+  options.method = args.method == "sphere"      ? cmaps::IntersurfaceMethod::sphere
+                   : args.method == "partition" ? cmaps::IntersurfaceMethod::partition
+                                                : cmaps::IntersurfaceMethod::automatic;
   return options;
 }
 
@@ -869,7 +888,11 @@ void run_intersurface(const Arguments& args, Outcome& out) {
                                                                  result.features[k].a, result.features[k].b});
   out.added_features = added + "]";
   out.outputs = JsonObject::array(outputs);
+  const auto computed = [](double median) { return median < 0 ? std::nullopt : std::optional<double>(median); };
   out.json.add("genus", result.genus)
+      .add("method", result.method == cmaps::IntersurfaceMethod::sphere ? "sphere" : "partition")
+      .add("sphere_median_dirichlet", computed(result.sphere_median_dirichlet))
+      .add("partition_median_dirichlet", computed(result.partition_median_dirichlet))
       .add_json("degenerate", JsonObject::array(std::vector<int>{ab.degenerate, ba.degenerate}))
       .add_json("median_symmetric_dirichlet", JsonObject::array(std::vector<double>{
                                                   ab.median_symmetric_dirichlet, ba.median_symmetric_dirichlet}))
@@ -964,6 +987,7 @@ void run_transfer(const Arguments& args, Outcome& out) {
   out.added_features = added + "]";
   out.outputs = JsonObject::array(std::vector<std::string>{args.output});
   out.json.add("genus", map.genus)
+      .add("method", map.method == cmaps::IntersurfaceMethod::sphere ? "sphere" : "partition")
       .add("seconds_compute", map.seconds)
       .add("seed", static_cast<unsigned long long>(args.seed))
       .add("effort", args.effort)

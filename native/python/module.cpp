@@ -529,9 +529,12 @@ std::pair<py::array_t<std::int32_t>, py::array_t<double>> to_numpy(const std::ve
 }
 
 py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, const py::handle& pairs_data, int grid,
-                          int optimize, int restarts, bool corner_images, int balance_rounds, std::uint64_t seed,
-                          int effort, int threads, const py::object& progress) {
+                          int optimize, int restarts, bool corner_images, int balance_rounds, const std::string& method,
+                          std::uint64_t seed, int effort, int threads, const py::object& progress) {
   cmaps::IntersurfaceOptions options;
+  if (method == "sphere") options.method = cmaps::IntersurfaceMethod::sphere;
+  else if (method == "partition") options.method = cmaps::IntersurfaceMethod::partition;
+  else if (method != "auto") raise(PyExc_ValueError, "method must be 'auto', 'sphere' or 'partition', got '" + method + "'");
   options.corner_images = corner_images;
   if (balance_rounds < 0)
     raise(PyExc_ValueError, "balance_rounds must be at least 0, got " + std::to_string(balance_rounds));
@@ -571,6 +574,10 @@ py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, co
   d["features"] = features;
   d["added_features"] = result.added_features;
   d["genus"] = result.genus;
+  d["method"] = result.method == cmaps::IntersurfaceMethod::sphere ? "sphere" : "partition";
+  const auto computed = [](double median) { return median < 0 ? py::object(py::none()) : py::object(py::float_(median)); };
+  d["sphere_median_dirichlet"] = computed(result.sphere_median_dirichlet);
+  d["partition_median_dirichlet"] = computed(result.partition_median_dirichlet);
   const cmaps::MapDistortion &ab = result.distortion_a_to_b, &ba = result.distortion_b_to_a;
   d["symmetric_dirichlet"] = py::make_tuple(ab.symmetric_dirichlet, ba.symmetric_dirichlet);
   d["flipped"] = py::make_tuple(ab.flipped, ba.flipped);
@@ -985,10 +992,13 @@ PYBIND11_MODULE(_native, m) {
   m.def("intersurface_map", &intersurface_map, py::arg("mesh_a"), py::arg("mesh_b"),
         py::arg("feature_pairs") = py::list(), py::kw_only(), py::arg("grid") = 64, py::arg("optimize") = 2,
         py::arg("restarts") = 1, py::arg("corner_images") = false, py::arg("balance_rounds") = 4,
-        py::arg("seed") = 1, py::arg("effort") = 1, py::arg("threads") = 2, py::arg("progress") = py::none(),
-        "Inter-surface map between two meshes of equal genus, closed or with as many holes (genus 0: through a consistent spherical\n"
-        "parameterization of both; genus >= 1: through a consistent partition into triangular patches,\n"
-        "'base_vertices' and 'base_triangles' of its base mesh, 'seconds_partition'). mesh_a, mesh_b: (vertices, triangles); feature_pairs: (k, 2)\n"
+        py::arg("method") = "auto", py::arg("seed") = 1, py::arg("effort") = 1, py::arg("threads") = 2, py::arg("progress") = py::none(),
+        "Inter-surface map between two meshes of equal genus, closed or with as many holes (genus >= 1:\n"
+        "through a consistent partition into triangular patches, 'base_vertices' and 'base_triangles' of its\n"
+        "base mesh, 'seconds_partition'; genus 0: method 'sphere' through a consistent spherical\n"
+        "parameterization of both, 'partition' directly as for genus >= 1, 'auto' both, keeping the lower\n"
+        "summed median distortion; 'method' says which was kept, 'sphere_median_dirichlet' and\n"
+        "'partition_median_dirichlet' the summed medians of the maps computed, None for one not). mesh_a, mesh_b: (vertices, triangles); feature_pairs: (k, 2)\n"
         "[vertex of A, vertex of B], mapped exactly onto each other (fewer than 3: pairs are added\n"
         "automatically up to 4). Returns a dict: 'a_to_b_triangle' (nA,) int32 and 'a_to_b_barycentric'\n"
         "(nA, 3): each vertex of A on an input triangle of B with weights w.r.t. its corners; likewise\n"

@@ -87,14 +87,14 @@ def test_round_trip_is_close_to_identity(cat_lion):
 
 def test_zero_features_get_a_valid_map(native):
     a, b = native.read_mesh(str(SPOT)), native.read_mesh(str(SPHERE))
-    r = native.intersurface_map(a, b, [], effort=0)
+    r = native.intersurface_map(a, b, [], effort=0, method="sphere")
     assert r["added_features"] == 4 and r["features"].shape == (4, 2)
     assert "a_corners_to_b_triangle" not in r  # only asked for with corner_images
     expect_valid(r["a_to_b_triangle"], r["a_to_b_barycentric"], b[1])
     expect_valid(r["b_to_a_triangle"], r["b_to_a_barycentric"], a[1])
     expect_exact(r, a, b)
     assert r["sphere_flipped"] == 0
-    plain = native.intersurface_map(a, b, [], effort=0, optimize=0)
+    plain = native.intersurface_map(a, b, [], effort=0, optimize=0, method="sphere")
     assert plain["symmetric_dirichlet"] == plain["composition_dirichlet"] == r["composition_dirichlet"]
     assert all(d < c for d, c in zip(r["symmetric_dirichlet"], r["composition_dirichlet"]))
     with pytest.raises(ValueError, match="optimize must be at least 0, got -1"):
@@ -107,8 +107,9 @@ def test_restarts_keep_the_least_distorted_map(native):
     energy is returned."""
     a, b = native.read_mesh(str(SPOT)), native.read_mesh(str(SPHERE))
     pairs = [[0, 0], [100, 50], [200, 300], [300, 350]]
-    best = native.intersurface_map(a, b, pairs, effort=0, seed=5, restarts=4)
-    singles = {k: native.intersurface_map(a, b, pairs, effort=0, seed=seed) for k, seed in ((0, 5), (3, 6))}
+    best = native.intersurface_map(a, b, pairs, effort=0, seed=5, restarts=4, method="sphere")
+    singles = {k: native.intersurface_map(a, b, pairs, effort=0, seed=seed, method="sphere")
+               for k, seed in ((0, 5), (3, 6))}
     assert [best["restart_dirichlet"][k] for k in singles] == [sum(r["symmetric_dirichlet"]) for r in singles.values()]
     assert [best["restart_median_dirichlet"][k] for k in singles] == \
         [sum(r["median_symmetric_dirichlet"]) for r in singles.values()]
@@ -139,10 +140,27 @@ def test_faces_with_holes(native):
     loops = boundary_loops(a[1])
     ring = [loop[i * len(loop) // 4] for loop in loops for i in range(4)]
     inner = [v for v in farthest_points(a[0], 12) if all(v not in loop for loop in loops)][:4]
-    r = native.intersurface_map(a, b, [[v, v] for v in ring + inner])
+    r = native.intersurface_map(a, b, [[v, v] for v in ring + inner], method="sphere")
+    expect_holes_onto_holes(r, a, b)
+    # Optimized with the rims held on their arcs (no refit with holes): less distorted than the composition.
+    assert sum(r["symmetric_dirichlet"]) < sum(r["composition_dirichlet"])
+    for on, truth in [(r["a_on_b"], b[0]), (r["b_on_a"], a[0])]:
+        assert np.linalg.norm(on - truth, axis=1).mean() / diagonal(truth) < 0.01
+    with pytest.raises(native.InvalidMeshError, match="ringed by 0 features"):
+        native.intersurface_map(a, b, [[v, v] for v in inner], method="sphere")
+    # The direct map pairs the holes itself (features added on their rims), so the automatic method
+    # falls back on it where the sphere needs rings of features.
+    direct = native.intersurface_map(a, b, [[v, v] for v in inner])
+    assert direct["method"] == "partition" and direct["sphere_median_dirichlet"] is None
+    assert direct["added_features"] >= 6
+    expect_holes_onto_holes(direct, a, b)
+
+
+def expect_holes_onto_holes(r, a, b):
     expect_valid(r["a_to_b_triangle"], r["a_to_b_barycentric"], b[1])
     expect_valid(r["b_to_a_triangle"], r["b_to_a_barycentric"], a[1])
     expect_exact(r, a, b)
+    from test_consistent import boundary_loops
     for source, target, triangle, weights in [(a, b, r["a_to_b_triangle"], r["a_to_b_barycentric"]),
                                               (b, a, r["b_to_a_triangle"], r["b_to_a_barycentric"])]:
         on_boundary = {v for loop in boundary_loops(target[1]) for v in loop}
@@ -150,12 +168,30 @@ def test_faces_with_holes(native):
             for v in loop:  # all weight on corners of the target's boundary
                 corners = target[1][triangle[v]]
                 assert sum(w for c, w in zip(corners, weights[v]) if c not in on_boundary) < 1e-9
-    # Optimized with the rims held on their arcs (no refit with holes): less distorted than the composition.
-    assert sum(r["symmetric_dirichlet"]) < sum(r["composition_dirichlet"])
-    for on, truth in [(r["a_on_b"], b[0]), (r["b_on_a"], a[0])]:
-        assert np.linalg.norm(on - truth, axis=1).mean() / diagonal(truth) < 0.01
-    with pytest.raises(native.InvalidMeshError, match="ringed by 0 features"):
-        native.intersurface_map(a, b, [[v, v] for v in inner])
+
+
+def test_genus_zero_methods(native):
+    """Genus 0 pairs go through the sphere, directly through a partition, or (auto) both, keeping the lower
+    summed median; each computed map's median is reported."""
+    from test_consistent import FACES, boundary_loops, farthest_points
+    a, b = native.read_mesh(str(FACES[0])), native.read_mesh(str(FACES[1]))
+    loops = boundary_loops(a[1])
+    pairs = [[v, v] for v in [loop[i * len(loop) // 4] for loop in loops for i in range(4)]]
+    both = native.intersurface_map(a, b, pairs)
+    medians = {m: both[f"{m}_median_dirichlet"] for m in ("sphere", "partition")}
+    assert None not in medians.values()
+    assert both["method"] == min(medians, key=medians.get)
+    assert sum(both["median_symmetric_dirichlet"]) == pytest.approx(medians[both["method"]])
+    for method in ("sphere", "partition"):
+        one = native.intersurface_map(a, b, pairs, method=method)
+        assert one["method"] == method and one[f"{method}_median_dirichlet"] == pytest.approx(medians[method])
+        other = "partition" if method == "sphere" else "sphere"
+        assert one[f"{other}_median_dirichlet"] is None
+    with pytest.raises(ValueError, match="method must be 'auto', 'sphere' or 'partition', got 'direct'"):
+        native.intersurface_map(a, b, pairs, method="direct")
+    torus = native.read_mesh(str(TORUS))
+    with pytest.raises(ValueError, match="the sphere method maps genus-0 pairs only; A and B have genus 1"):
+        native.intersurface_map(torus, torus, [], method="sphere")
 
 
 def test_genus_one_map(native):
@@ -256,10 +292,13 @@ def test_cli_writes_maps_and_json(cmaps_binary, native, tmp_path):
     features = tmp_path / "features.json"
     features.write_text(json.dumps({"tip": [10, 20]}))
     out = tmp_path / "maps"
-    result = run(cmaps_binary, "intersurface", SPOT, SPHERE, "--features", features, "-o", out, "--effort", "0", "--json")
+    result = run(cmaps_binary, "intersurface", SPOT, SPHERE, "--features", features, "-o", out, "--effort", "0", "--json",
+                 "--method", "sphere")
     assert result.returncode == 0, result.stderr
     report = json.loads(result.stdout)
     assert report["error"] is None and report["faces"] == [len(a[1]), len(b[1])]
+    assert report["method"] == "sphere" and report["partition_median_dirichlet"] is None
+    assert report["sphere_median_dirichlet"] == pytest.approx(sum(report["median_symmetric_dirichlet"]))
     assert report["features"] == 1 and len(report["added_features"]) == 3
     assert len(report["symmetric_dirichlet"]) == len(report["flipped"]) == len(report["steiner"]) == 2
     assert report["seconds"] > 0 and report["sphere_flipped"] == 0
@@ -273,7 +312,8 @@ def test_cli_writes_maps_and_json(cmaps_binary, native, tmp_path):
 
 def test_cli_optimize_zero_keeps_the_composition(cmaps_binary, tmp_path):
     out = tmp_path / "maps"
-    result = run(cmaps_binary, "intersurface", SPOT, SPHERE, "-o", out, "--optimize", "0", "--effort", "0", "--json")
+    result = run(cmaps_binary, "intersurface", SPOT, SPHERE, "-o", out, "--optimize", "0", "--effort", "0", "--json",
+                 "--method", "sphere")
     assert result.returncode == 0, result.stderr
     report = json.loads(result.stdout)
     assert report["symmetric_dirichlet"] == report["composition_dirichlet"]
@@ -312,6 +352,12 @@ def test_cli_usage(cmaps_binary, tmp_path):
     result = run(cmaps_binary, "sphere", SPOT, "-o", tmp_path / "s.obj", "--restarts", "2")
     assert result.returncode == 2 and "sphere takes no --restarts (only consistent, intersurface and transfer do)" \
         in result.stderr
+    result = run(cmaps_binary, "intersurface", SPOT, SPHERE, "-o", tmp_path / "out", "--method", "direct")
+    assert result.returncode == 2 and "--method expects auto, sphere or partition, got 'direct'" in result.stderr
+    result = run(cmaps_binary, "consistent", SPOT, SPHERE, "-o", tmp_path / "out", "--method", "sphere")
+    assert result.returncode == 2 and "consistent takes no --method (only intersurface and transfer do)" in result.stderr
+    result = run(cmaps_binary, "intersurface", TORUS, TORUS, "-o", tmp_path / "out", "--method", "sphere")
+    assert result.returncode == 1 and "the sphere method maps genus-0 pairs only; A and B have genus 1" in result.stderr
 
 
 def test_continue_across_seams(native):

@@ -317,6 +317,21 @@ int farthest_from_centroid(const TriangleMesh& mesh) {
   return best;
 }
 
+// A -> B plus B -> A median distortion: what chooses between maps of one pair.
+double summed_median(const IntersurfaceResult& r) {
+  return r.distortion_a_to_b.median_symmetric_dirichlet + r.distortion_b_to_a.median_symmetric_dirichlet;
+}
+
+// The stage times of a map computed and dropped, added to the one kept.
+void add_stage_seconds(IntersurfaceResult& kept, const IntersurfaceResult& dropped) {
+  kept.seconds_features += dropped.seconds_features;
+  kept.seconds_partition += dropped.seconds_partition;
+  kept.seconds_parameterize += dropped.seconds_parameterize;
+  kept.seconds_optimize += dropped.seconds_optimize;
+  kept.seconds_locate += dropped.seconds_locate;
+  kept.seconds_measure += dropped.seconds_measure;
+}
+
 // Genus >= 1: the map through one consistent partition of the closed
 // meshes (patch embeddings, their optimization, point location), measured.
 void map_partition(ConsistentPartition& partition, const ClosedMesh& closed_a, const ClosedMesh& closed_b,
@@ -369,7 +384,8 @@ void map_partition(ConsistentPartition& partition, const ClosedMesh& closed_a, c
   result.seconds_measure = seconds_since(stage);
 }
 
-// Genus >= 1: the direct map through a consistent partition.
+// The direct map through a consistent partition (every pair of genus >= 1;
+// genus 0 on request or to compare with the sphere).
 void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResult& result,
                          const IntersurfaceOptions& options, const ProgressCallback& progress) {
   auto stage = Clock::now();
@@ -386,6 +402,18 @@ void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, Intersurf
     // Holes bring their own pairs on their rims.
     const int far_a = farthest_from_centroid(a);
     pairs.push_back({far_a, PathGuide({}, {}, a, b).nearest(a.vertices[far_a], b.vertices)});
+  }
+  if (result.genus == 0 && pairs.size() == 1 && closed_a.loops.empty()) {
+    // A sphere's partition grows from a path: a second pair, A's vertex
+    // farthest from the first and B's nearest to it in A's frame.
+    int far_a = 0;
+    const Vec3& first = a.vertices[pairs[0][0]];
+    for (int v = 1; v < int(a.vertices.size()); ++v)
+      if ((a.vertices[v] - first).squaredNorm() > (a.vertices[far_a] - first).squaredNorm()) far_a = v;
+    const PathGuide guide({first}, {b.vertices[pairs[0][1]]}, a, b);
+    int near_b = guide.nearest(a.vertices[far_a], b.vertices);
+    if (near_b == pairs[0][1]) near_b = (near_b + 1) % int(b.vertices.size());
+    pairs.push_back({far_a, near_b});
   }
   TriangleMesh b_like_a = closed_b.mesh;
   const bool turned = signed_volume(closed_a.mesh) * signed_volume(closed_b.mesh) < 0;
@@ -432,15 +460,12 @@ void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, Intersurf
     } catch (const Error&) {
       mapped = false;
     }
-    const auto median = [](const IntersurfaceResult& r) {
-      return r.distortion_a_to_b.median_symmetric_dirichlet + r.distortion_b_to_a.median_symmetric_dirichlet;
-    };
-    const bool better = mapped && median(moved) < median(result);
-    IntersurfaceResult &kept = better ? moved : result, &dropped = better ? result : moved;
-    kept.seconds_parameterize += dropped.seconds_parameterize;
-    kept.seconds_optimize += dropped.seconds_optimize;
-    kept.seconds_locate += dropped.seconds_locate;
-    kept.seconds_measure += dropped.seconds_measure;
+    const bool better = mapped && summed_median(moved) < summed_median(result);
+    // Both maps share the partition and features: their times count once.
+    IntersurfaceResult& kept = better ? moved : result;
+    const double partition_seconds = kept.seconds_partition, feature_seconds = kept.seconds_features;
+    add_stage_seconds(kept, better ? result : moved);
+    kept.seconds_partition = partition_seconds, kept.seconds_features = feature_seconds;
     if (better) {
       result = std::move(moved);
       result.balanced_patches = true;
@@ -607,6 +632,32 @@ void map_through_sphere_pair(const TriangleMesh& a, const TriangleMesh& b, const
   result.seconds_measure = seconds_since(stage);
 }
 
+// Genus 0 through the sphere: options.restarts maps, the one with the lowest
+// summed median kept. The optimization ends in a different local minimum from
+// each start; restarts cycle through three layouts of the pair's consistent
+// parameterization, the seed advancing after each cycle; each starts some
+// pairs in a better basin and others in a worse one.
+void map_through_sphere_restarts(const TriangleMesh& a, const TriangleMesh& b, const std::vector<FeaturePair>& features,
+                                 IntersurfaceResult& result, const IntersurfaceOptions& options,
+                                 const ProgressCallback& progress) {
+  constexpr PairLayout kLayouts[] = {PairLayout::single_pass, PairLayout::carried_guides, PairLayout::aligned};
+  std::vector<double> energies, medians;
+  IntersurfaceResult best;
+  for (int r = 0, restarts = options.restarts; r < restarts; ++r) {
+    IntersurfaceOptions attempt = options;
+    attempt.sphere.seed = options.sphere.seed + r / 3;
+    IntersurfaceResult tried = result;
+    map_through_sphere_pair(a, b, features, kLayouts[r % 3], tried, attempt,
+                            slice(progress, double(r) / restarts, (r + 1.0) / restarts));
+    energies.push_back(tried.distortion_a_to_b.symmetric_dirichlet + tried.distortion_b_to_a.symmetric_dirichlet);
+    medians.push_back(summed_median(tried));
+    if (medians.back() <= *std::min_element(medians.begin(), medians.end())) best = std::move(tried);
+  }
+  result = std::move(best);
+  result.restart_dirichlet = std::move(energies);
+  result.restart_median_dirichlet = std::move(medians);
+}
+
 }  // namespace
 
 std::vector<Vec3> surface_positions(const TriangleMesh& target, const std::vector<SurfacePoint>& points) {
@@ -719,47 +770,66 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
   IntersurfaceResult result;
   result.genus = genus_a;
   result.features = features;
-  if (genus_a > 0) {
+  if (genus_a == 0)
+    for (const auto& [mesh, name] : {std::pair<const TriangleMesh&, const char*>{a, "A"}, {b, "B"}}) {
+      try {
+        require_sphere_topology(mesh, /*allow_holes=*/true);
+      } catch (const TopologyError& e) {
+        throw TopologyError(std::string(name) + ": " + e.what());
+      } catch (const InvalidInput& e) {
+        throw InvalidInput(std::string(name) + ": " + e.what());
+      }
+    }
+  if (genus_a > 0 && options.method == IntersurfaceMethod::sphere)
+    throw InvalidInput("the sphere method maps genus-0 pairs only; A and B have genus " + std::to_string(genus_a));
+  if (genus_a > 0 || options.method == IntersurfaceMethod::partition) {
     map_through_patches(a, b, result, options, progress);
+    result.method = IntersurfaceMethod::partition;
+    if (genus_a == 0) result.partition_median_dirichlet = summed_median(result);
     if (progress && !progress(1, "done")) throw Cancelled();
     result.seconds = seconds_since(start);
     return result;
-  }
-  for (const auto& [mesh, name] : {std::pair<const TriangleMesh&, const char*>{a, "A"}, {b, "B"}}) {
-    try {
-      require_sphere_topology(mesh, /*allow_holes=*/true);
-    } catch (const TopologyError& e) {
-      throw TopologyError(std::string(name) + ": " + e.what());
-    } catch (const InvalidInput& e) {
-      throw InvalidInput(std::string(name) + ": " + e.what());
-    }
   }
   if (options.grid < 2 || options.grid % 2 != 0)
     throw InvalidInput("grid must be even and at least 2, got " + std::to_string(options.grid));
   if (options.restarts < 1) throw InvalidInput("restarts must be at least 1, got " + std::to_string(options.restarts));
 
-  // The optimization ends in a different local minimum from each start, and
-  // the least distorted map over most of the surface (the lowest median)
-  // wins. Restarts cycle through three layouts of
-  // the pair's consistent parameterization, the seed advancing after each
-  // cycle; each starts some pairs in a better basin and others in a worse one.
-  constexpr PairLayout kLayouts[] = {PairLayout::single_pass, PairLayout::carried_guides, PairLayout::aligned};
-  std::vector<double> energies, medians;
-  IntersurfaceResult best;
-  for (int r = 0, restarts = options.restarts; r < restarts; ++r) {
-    IntersurfaceOptions attempt = options;
-    attempt.sphere.seed = options.sphere.seed + r / 3;
-    IntersurfaceResult tried = result;
-    map_through_sphere_pair(a, b, features, kLayouts[r % 3], tried, attempt,
-                            slice(progress, double(r) / restarts, (r + 1.0) / restarts));
-    energies.push_back(tried.distortion_a_to_b.symmetric_dirichlet + tried.distortion_b_to_a.symmetric_dirichlet);
-    medians.push_back(tried.distortion_a_to_b.median_symmetric_dirichlet +
-                      tried.distortion_b_to_a.median_symmetric_dirichlet);
-    if (medians.back() <= *std::min_element(medians.begin(), medians.end())) best = std::move(tried);
+  // Automatic: the direct map too (a partition that gets stuck leaves the sphere's).
+  const bool both = options.method == IntersurfaceMethod::automatic;
+  IntersurfaceResult direct = result;
+  bool have_direct = false;
+  if (both) {
+    try {
+      map_through_patches(a, b, direct, options, slice(progress, 0, 0.3));
+      have_direct = true;
+    } catch (const Cancelled&) {
+      throw;
+    } catch (const Error&) {
+    }
   }
-  result = std::move(best);
-  result.restart_dirichlet = std::move(energies);
-  result.restart_median_dirichlet = std::move(medians);
+  try {
+    map_through_sphere_restarts(a, b, features, result, options, slice(progress, both ? 0.3 : 0, 1));
+  } catch (const Cancelled&) {
+    throw;
+  } catch (const Error&) {
+    // e.g. a hole ringed by fewer than 3 pairs: the partition pairs holes itself
+    if (!have_direct) throw;
+    direct.partition_median_dirichlet = summed_median(direct);
+    result = std::move(direct);
+    if (progress && !progress(1, "done")) throw Cancelled();
+    result.seconds = seconds_since(start);
+    return result;
+  }
+  result.method = IntersurfaceMethod::sphere;
+  result.sphere_median_dirichlet = summed_median(result);
+  if (have_direct) {
+    result.partition_median_dirichlet = direct.partition_median_dirichlet = summed_median(direct);
+    direct.sphere_median_dirichlet = result.sphere_median_dirichlet;
+    direct.method = IntersurfaceMethod::partition;
+    const bool direct_wins = summed_median(direct) < summed_median(result);
+    add_stage_seconds(direct_wins ? direct : result, direct_wins ? result : direct);
+    if (direct_wins) result = std::move(direct);
+  }
   if (progress && !progress(1, "done")) throw Cancelled();
   result.seconds = seconds_since(start);
   return result;
