@@ -78,12 +78,12 @@ class Task:
 class Outcome:
     """What a run computed, for apply(): per task (sphere, stats, surface, refinement), surface being the
     (vertices, triangles, sphere) of the map and refinement (input triangle of each surface triangle,
-    Steiner vertices, Steiner weights); and the feature locations common to the set. Two objects of
-    genus >= 1 are mapped onto each other directly: per task (None, stats, None, None) and pair_maps."""
+    Steiner vertices, Steiner weights); and the feature locations common to the set. Two objects mapped
+    onto each other (genus >= 1, or genus 0 as a pair): per task (None, stats, None, None) and pair_maps."""
     members: list
     feature_names: list
     feature_locations: list = field(default_factory=list)
-    # Two objects of genus >= 1: per task (triangle (n,), weights (n, 3)) of its vertices on the other, then
+    # Two objects mapped onto each other: per task (triangle (n,), weights (n, 3)) of its vertices on the other, then
     # (triangle (loops,), weights (loops, 3)) of its corners (loops), each from a point of its own face
     pair_maps: list = None
 
@@ -111,8 +111,9 @@ def _mesh_problem(name, report):
     return f"'{name}': {report['sphere_error']}{hint}"
 
 
-def prepare(objects):
-    """Validates the objects and copies their meshes out; raises ComputeError listing every problem."""
+def prepare(objects, pair_map=False):
+    """Validates the objects and copies their meshes out; raises ComputeError listing every problem.
+    Two objects of genus >= 1, or of genus 0 with `pair_map`, are mapped onto each other (see run())."""
     objects = list(objects)
     found = _object_problems(objects)
     if found:
@@ -125,7 +126,7 @@ def prepare(objects):
         placed = _features.features(obj)
         tasks.append(Task(obj.name, arrays, [placed.get(name, -1) for name in names], reports[-1]["genus"]))
     handled = [_has_handles(r) for r in reports]
-    pair = len(objects) == 2 and all(handled)
+    pair = len(objects) == 2 and (all(handled) or pair_map and reports[0]["genus"] == reports[1]["genus"] == 0)
     if pair and reports[0]["genus"] != reports[1]["genus"]:
         found.append(f"'{objects[0].name}' has genus {reports[0]['genus']} and '{objects[1].name}' genus "
                      f"{reports[1]['genus']}: objects with handles are mapped in pairs of equal genus")
@@ -151,7 +152,7 @@ def feature_names(objects):
     return _features.shared_names(list(objects))
 
 
-def run(tasks, names, *, effort=1, seed=1, threads=None, progress=None, restarts=1, align=False):
+def run(tasks, names, *, effort=1, seed=1, threads=None, progress=None, restarts=1, align=False, pair_map=False):
     """The computation proper, touching no Blender data (safe in a worker thread); returns an Outcome.
 
     One object: its unconstrained map. Several: the consistent parameterization of the set, each
@@ -159,7 +160,9 @@ def run(tasks, names, *, effort=1, seed=1, threads=None, progress=None, restarts
     lacking a feature, -1 in its Task, is left free there). Several objects are computed `restarts` times
     (seeds seed, seed + 1, ...), the best run kept; with `align` every member's map is then refitted
     towards the first complete member's where that lowers the distortion between them (poses of one
-    shape slide less between the features; pairs of genus >= 1 ignore it).
+    shape slide less between the features; pairs of genus >= 1 ignore it). Two objects of genus >= 1, or
+    of genus 0 with `pair_map`, are mapped onto each other by the inter-surface map instead (genus 0: through
+    the sphere and directly through a consistent partition, the less distorted kept).
     progress(fraction of the whole run, text) returning False cancels: raises Cancelled.
     """
     threads = threads or os.cpu_count() or 1
@@ -167,7 +170,7 @@ def run(tasks, names, *, effort=1, seed=1, threads=None, progress=None, restarts
     def forward(fraction, stage):
         return progress is None or progress(fraction, stage) is not False
     try:
-        if len(tasks) == 2 and tasks[0].genus >= 1:
+        if len(tasks) == 2 and (tasks[0].genus >= 1 or pair_map):
             return _run_pair(tasks, names, effort=effort, seed=seed, threads=threads, progress=forward,
                              restarts=restarts)
         if len(tasks) == 1:
@@ -192,7 +195,8 @@ def run(tasks, names, *, effort=1, seed=1, threads=None, progress=None, restarts
 
 
 def _run_pair(tasks, names, **options):
-    """Two objects of equal genus >= 1: the inter-surface map (consistent partition, Schreiner et al.)."""
+    """Two objects of equal genus: the inter-surface map (genus >= 1 through a consistent partition, Schreiner et
+    al.; genus 0 that way and through the sphere, the less distorted kept)."""
     a, b = tasks
     pairs = [[i, j] for i, j in zip(a.feature_vertices, b.feature_vertices) if i >= 0 and j >= 0]
     try:
@@ -202,8 +206,8 @@ def _run_pair(tasks, names, **options):
         raise ComputeError(re.sub(r"\b([AB])\b(?=:| has| \()", lambda m: f"'{tasks['AB'.index(m.group(1))].name}'",
                                   str(e))) from e
     # The median says how distorted most of the surface is; a few near-degenerate triangles rule the mean.
-    stats = [{"genus": r["genus"], "symmetric_dirichlet": float(d), "median_symmetric_dirichlet": float(m),
-              "seconds": r["seconds"], "bijective": True}
+    stats = [{"genus": r["genus"], "method": r["method"], "symmetric_dirichlet": float(d),
+              "median_symmetric_dirichlet": float(m), "seconds": r["seconds"], "bijective": True}
              for d, m in zip(r["symmetric_dirichlet"], r["median_symmetric_dirichlet"])]
     pair_maps = []
     for task, (this, other) in zip(tasks, ("ab", "ba")):
@@ -237,7 +241,7 @@ def apply(tasks, outcome):
     return {task.name: member[1] for task, member in zip(tasks, outcome.members)}
 
 
-def compute(objects, *, effort=1, seed=1, threads=None, progress=None, restarts=1, align=False):
+def compute(objects, *, effort=1, seed=1, threads=None, progress=None, restarts=1, align=False, pair_map=False):
     """Maps every object onto the sphere and stores the results; returns {object name: stats}.
 
     With several objects the maps are consistent: each feature lands on the same sphere point on every
@@ -246,13 +250,15 @@ def compute(objects, *, effort=1, seed=1, threads=None, progress=None, restarts=
     is missing); api.remesh() then builds consistent remeshes. `restarts` > 1 computes several objects
     that many times (other seeds) and keeps the best run: with few features one run can twist an object's
     map around them. `align` refits every object's map towards the first complete object's (see run()).
+    `pair_map`: two objects of genus 0 are mapped onto each other directly, like pairs of genus >= 1 (see
+    run()): no remesh or sphere preview then.
 
     Raises ComputeError (invalid input, nothing modified) or Cancelled (progress returned False).
     """
     objects = list(objects)
-    tasks = prepare(objects)
+    tasks = prepare(objects, pair_map=pair_map)
     return apply(tasks, run(tasks, feature_names(objects), effort=effort, seed=seed, threads=threads,
-                            progress=progress, restarts=restarts, align=align))
+                            progress=progress, restarts=restarts, align=align, pair_map=pair_map))
 
 
 def _remesh_problems(objects, resolution, scene):

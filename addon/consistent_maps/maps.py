@@ -48,8 +48,9 @@ def check(objects):
 
 def sphere_problems(objects):
     """Which of the (checked) objects have no spherical map, being mapped directly onto a partner."""
-    return [f"'{obj.name}' (genus {results.stats(obj.data).get('genus', '1 or more')}) is mapped directly onto "
-            f"its partner, without a sphere: this needs objects of genus 0" for obj in objects
+    return [f"'{obj.name}' (genus {genus}) is mapped directly onto its partner, without a sphere: this needs "
+            + ("objects computed onto the sphere (Map the Pair Directly off)" if genus == 0 else "objects of genus 0")
+            for obj, genus in ((o, results.stats(o.data).get('genus', '1 or more')) for o in objects)
             if results.pair_map(obj.data) is not None]
 
 
@@ -78,7 +79,7 @@ def vertex_landing(source, target):
 def corner_landing(source, target):
     """Where each corner (loop) of target lands on source: from the target corner's own triangle, so
     per-corner source values are taken from the matching side of a seam. Objects mapped directly onto
-    each other (genus >= 1) store these images per corner."""
+    each other (genus >= 1, or genus 0 as a pair) store these images per corner."""
     pair = results.pair_corner_map(target.data)
     if pair is not None:
         return mapping.Landing(*pair)

@@ -9,7 +9,8 @@ TIMER_STEP = 0.1
 
 def _options(context):
     settings = context.scene.consistent_maps
-    return {"effort": int(settings.effort), "restarts": settings.restarts, "align": settings.align}
+    return {"effort": int(settings.effort), "restarts": settings.restarts, "align": settings.align,
+            "pair_map": settings.pair_map}
 
 
 def _leave_edit_mode(context, objects):
@@ -22,7 +23,8 @@ def _summary(stats):
     if "genus" in first:
         median = ", ".join(f"{s['median_symmetric_dirichlet']:.1f}" for s in stats.values())
         mean = ", ".join(f"{s['symmetric_dirichlet']:.1f}" for s in stats.values())
-        return (f"Mapped 2 objects of genus {first['genus']} onto each other in {first['seconds']:.1f} s "
+        way = "directly" if first.get("method") == "partition" else "through the sphere"
+        return (f"Mapped 2 objects of genus {first['genus']} onto each other {way} in {first['seconds']:.1f} s "
                 f"(symmetric Dirichlet median {median}, mean {mean}; best 4)")
     worst = min(s["efficiency"] for s in stats.values())
     seconds = sum(s["seconds"] for s in stats.values())
@@ -47,7 +49,7 @@ class CM_OT_compute(bpy.types.Operator):
         objects = set_objects(context.scene)
         _leave_edit_mode(context, objects)
         try:
-            return api.prepare(objects), api.feature_names(objects)
+            return api.prepare(objects, pair_map=context.scene.consistent_maps.pair_map), api.feature_names(objects)
         except api.ComputeError as e:
             self.report({'ERROR'}, str(e))
             return None

@@ -155,6 +155,8 @@ class CM_PT_compute(_Panel, bpy.types.Panel):
             layout.prop(settings, "effort")
             layout.prop(settings, "restarts")
             layout.prop(settings, "align")
+            if len(settings.members) == 2:
+                layout.prop(settings, "pair_map")
             layout.operator("consistent_maps.compute", icon='PLAY')
         else:
             row = layout.row()

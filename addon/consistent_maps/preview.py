@@ -39,7 +39,7 @@ def problem(obj):
     if obj.mode == 'EDIT':
         return f"'{obj.name}' is in Edit Mode: leave it to show the sphere"
     if results.pair_map(obj.data) is not None:
-        return f"'{obj.name}' is mapped directly onto its partner (genus 1 or more): it has no sphere to show"
+        return f"'{obj.name}' is mapped directly onto its partner: it has no sphere to show"
     return None
 
 

@@ -51,6 +51,12 @@ class CM_Settings(bpy.types.PropertyGroup):
                                     "distorts the map between them less: poses of one shape slide less between "
                                     "the features (takes longer, costs some stretch efficiency; objects with "
                                     "holes keep their maps)")
+    pair_map: BoolProperty(name="Map the Pair Directly", default=False,
+                           description="Two objects of genus 0: map them onto each other (through the sphere "
+                                       "and directly through a consistent partition, the less distorted kept) "
+                                       "instead of onto the common sphere: poses of one shape correspond far "
+                                       "better; no remesh or sphere preview then. Objects with handles are "
+                                       "always mapped in pairs")
     resolution: IntProperty(name="Resolution", default=64, min=2, max=1024,
                             description="Octahedral grid resolution n of the remeshes (even): n² + 2 vertices")
     morph_target: PointerProperty(type=bpy.types.Object, poll=_is_mesh, name="Target",
