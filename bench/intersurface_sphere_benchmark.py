@@ -37,7 +37,9 @@ def read_obj_vertices(path):
 
 def row(name, result, features, truth=""):
     d, m, c = result["symmetric_dirichlet"], result["median_symmetric_dirichlet"], result["composition_dirichlet"]
-    return (f"| {name} | {result['faces'][0]} / {result['faces'][1]} | {features} | "
+    medians = " / ".join("-" if result[f"{k}_median_dirichlet"] is None else f"{result[f'{k}_median_dirichlet']:.2f}"
+                         for k in ("sphere", "partition"))
+    return (f"| {name} | {result['faces'][0]} / {result['faces'][1]} | {features} | {result['method']} ({medians}) | "
             f"{len(result['restart_dirichlet'])} | {result['wall']:.1f} ({result['seconds_parameterize']:.1f} / "
             f"{result['seconds_optimize']:.1f}) | {result['peak_mb']:.0f} | {d[0]:.1f} / {d[1]:.1f} | "
             f"{m[0]:.2f} / {m[1]:.2f} | "
@@ -48,15 +50,18 @@ def row(name, result, features, truth=""):
 def main():
     lines = [f"Measured {machine()} (machine shared with other work), `cmaps intersurface A B --features FILE -o DIR "
              "--json [--restarts K]`, effort 1, default `--optimize 2`. Seconds: wall time of the whole command "
-             "(parameterize / optimize, summed over restarts). Symmetric Dirichlet by vertex sampling (each source "
+             "(parameterize / optimize, summed over restarts and both maps). `--method auto`: the map through the common "
+             "sphere (restarts) and the direct map through a consistent partition, the lower summed median kept. Symmetric Dirichlet by vertex sampling (each source "
              "triangle onto the triangle its corners' images form, target scaled to the source's area; optimum 4): "
              "area-weighted mean and the median triangle's (restarts keep the lowest median, both directions summed); "
-             "\"plain\": the composition before refitting and optimization (of the kept restart). Ground truth: mean "
+             "\"plain\": the composition before refitting and optimization (of the kept restart; for the direct map its final "
+             "distortion). Ground truth: mean "
              "distance between a vertex's image and its true partner, % of the target's bounding-box diagonal "
              "(target < 2 %).", "",
-             "| pair | faces | features | restarts | seconds (parameterize / optimize) | peak MB | symmetric Dirichlet "
-             "A->B / B->A | median | plain | flipped samples | flipped on the sphere | ground truth A->B / B->A |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "| pair | faces | features | map kept (summed medians sphere / direct) | restarts | seconds (parameterize "
+             "/ optimize) | peak MB | symmetric Dirichlet A->B / B->A | median | plain | flipped samples | flipped on "
+             "the sphere | ground truth A->B / B->A |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
 
     def emit(line):
         lines.append(line)

@@ -214,8 +214,10 @@ struct IntersurfaceResult {
 // oriented surface, closed or genus 0 with holes (naming A or B), for meshes of different
 // genus ("A has genus 1, B has genus 2; an inter-surface map needs equal
 // genus"); InvalidInput for a feature vertex out of range or used by two
-// pairs; Error when a genus >= 1 partition gets stuck; Cancelled when
-// `progress` says so.
+// pairs, or the sphere method asked of genus >= 1; Error when a partition
+// gets stuck (genus 0, automatic method: the sphere's map is returned, and
+// the partition's when the sphere refuses a hole ringed by too few pairs);
+// Cancelled when `progress` says so.
 IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b,
                                     const std::vector<FeaturePair>& features,
                                     const IntersurfaceOptions& options = {},
