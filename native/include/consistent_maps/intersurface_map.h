@@ -112,6 +112,8 @@ struct IntersurfaceOptions {
   // starting parameterization: with few features the spread is wide
   // (sets/cactus 0 -> 3, 8 features: ground-truth error 2.2-7.9 % over six
   // starts), and the energy ranks the maps nearly like the true error does.
+  // The direct map (any genus) with 2 or more: also traced and optimized from
+  // B's side, the lower median kept (it is deterministic: two starts only).
   int restarts = 1;
   // Also map every triangle corner of A and of B (IntersurfaceResult::
   // a_corners_to_b, b_corners_to_a), for transferring per-corner values such

@@ -632,6 +632,43 @@ void map_through_sphere_pair(const TriangleMesh& a, const TriangleMesh& b, const
   result.seconds_measure = seconds_since(stage);
 }
 
+// The same map seen from the other side: A and B exchanged.
+void exchange_sides(IntersurfaceResult& r) {
+  std::swap(r.a_to_b, r.b_to_a);
+  std::swap(r.a_corners_to_b, r.b_corners_to_a);
+  std::swap(r.a_on_b, r.b_on_a);
+  std::swap(r.distortion_a_to_b, r.distortion_b_to_a);
+  std::swap(r.composition_a_to_b, r.composition_b_to_a);
+  for (FeaturePair& f : r.features) std::swap(f.a, f.b);
+  std::swap(r.efficiency_a, r.efficiency_b);
+  std::swap(r.refitted_a, r.refitted_b);
+  std::swap(r.steiner_a, r.steiner_b);
+}
+
+// The direct map through a partition; with restarts, also traced and
+// optimized from B's side (the partition is traced on A first and A's
+// embedding moves against B's, so the two differ: sets/cactus 0 -> 1 is
+// 0.8 % off the truth one way and 2.0 % the other), the lower summed median kept.
+void map_directly(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResult& result,
+                  const IntersurfaceOptions& options, const ProgressCallback& progress) {
+  const bool both_ways = options.restarts >= 2;
+  IntersurfaceResult backward = result;
+  map_through_patches(a, b, result, options, slice(progress, 0, both_ways ? 0.5 : 1));
+  if (!both_ways) return;
+  exchange_sides(backward);
+  try {
+    map_through_patches(b, a, backward, options, slice(progress, 0.5, 1));
+  } catch (const Cancelled&) {
+    throw;
+  } catch (const Error&) {
+    return;  // the forward map serves
+  }
+  exchange_sides(backward);
+  const bool better = summed_median(backward) < summed_median(result);
+  add_stage_seconds(better ? backward : result, better ? result : backward);
+  if (better) result = std::move(backward);
+}
+
 // Genus 0 through the sphere: options.restarts maps, the one with the lowest
 // summed median kept. The optimization ends in a different local minimum from
 // each start; restarts cycle through three layouts of the pair's consistent
@@ -780,10 +817,11 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
         throw InvalidInput(std::string(name) + ": " + e.what());
       }
     }
+  if (options.restarts < 1) throw InvalidInput("restarts must be at least 1, got " + std::to_string(options.restarts));
   if (genus_a > 0 && options.method == IntersurfaceMethod::sphere)
     throw InvalidInput("the sphere method maps genus-0 pairs only; A and B have genus " + std::to_string(genus_a));
   if (genus_a > 0 || options.method == IntersurfaceMethod::partition) {
-    map_through_patches(a, b, result, options, progress);
+    map_directly(a, b, result, options, progress);
     result.method = IntersurfaceMethod::partition;
     if (genus_a == 0) result.partition_median_dirichlet = summed_median(result);
     if (progress && !progress(1, "done")) throw Cancelled();
@@ -792,7 +830,6 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
   }
   if (options.grid < 2 || options.grid % 2 != 0)
     throw InvalidInput("grid must be even and at least 2, got " + std::to_string(options.grid));
-  if (options.restarts < 1) throw InvalidInput("restarts must be at least 1, got " + std::to_string(options.restarts));
 
   // Automatic: the direct map too (a partition that gets stuck leaves the sphere's).
   const bool both = options.method == IntersurfaceMethod::automatic;
@@ -800,7 +837,7 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
   bool have_direct = false;
   if (both) {
     try {
-      map_through_patches(a, b, direct, options, slice(progress, 0, 0.3));
+      map_directly(a, b, direct, options, slice(progress, 0, 0.3));
       have_direct = true;
     } catch (const Cancelled&) {
       throw;
