@@ -149,7 +149,7 @@ def read_attributed_obj(path):
     return vertices[:, :3], vertices[:, 3:], np.array(uvs)[np.array(face_uvs)]
 
 
-def pairwise_transfer(folder, source_obj, source, target_path, target, features, optimize):
+def pairwise_transfer(folder, source_obj, source, target_path, target, features, optimize, restarts=1):
     """(morph positions, transferred positions, colours, corner UVs, seconds, method kept) through the inter-surface map
     of target onto source: `cmaps transfer` (what it writes), and the same map from `intersurface_map`
     for the morph, which `cmaps transfer` does not write."""
@@ -157,12 +157,13 @@ def pairwise_transfer(folder, source_obj, source, target_path, target, features,
     pairs.write_text(json.dumps({f"f{k}": [v, v] for k, v in enumerate(features)}))
     out = folder / "out.obj"
     report = run_cmaps("transfer", str(source_obj), str(target_path), "--features", str(pairs), "--positions",
-                       "--optimize", str(optimize), "-o", str(out))
+                       "--optimize", str(optimize), "--restarts", str(restarts), "-o", str(out))
     if report.get("error"):
         raise RuntimeError(report["error"])
     positions, colours, uvs = read_attributed_obj(out)
     start = time.perf_counter()
-    same = _native.intersurface_map(target, source, np.array([features, features]).T, optimize=optimize)
+    same = _native.intersurface_map(target, source, np.array([features, features]).T, optimize=optimize,
+                                    restarts=restarts)
     seconds = time.perf_counter() - start
     # The same computation as the command's: its positions agree, so the morph belongs to the same map.
     agreement = np.abs(same["a_on_b"] - positions).max()
