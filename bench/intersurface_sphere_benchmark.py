@@ -35,12 +35,12 @@ def read_obj_vertices(path):
     return np.array([line.split()[1:4] for line in open(path) if line.startswith("v ")], float)
 
 
-def row(name, result, features, truth=""):
+def row(name, result, features, truth="", restarts=1):
     d, m, c = result["symmetric_dirichlet"], result["median_symmetric_dirichlet"], result["composition_dirichlet"]
     medians = " / ".join("-" if result[f"{k}_median_dirichlet"] is None else f"{result[f'{k}_median_dirichlet']:.2f}"
                          for k in ("sphere", "partition"))
     return (f"| {name} | {result['faces'][0]} / {result['faces'][1]} | {features} | {result['method']} ({medians}) | "
-            f"{len(result['restart_dirichlet'])} | {result['wall']:.1f} ({result['seconds_parameterize']:.1f} / "
+            f"{restarts} | {result['wall']:.1f} ({result['seconds_parameterize']:.1f} / "
             f"{result['seconds_optimize']:.1f}) | {result['peak_mb']:.0f} | {d[0]:.1f} / {d[1]:.1f} | "
             f"{m[0]:.2f} / {m[1]:.2f} | "
             f"{c[0]:.1f} / {c[1]:.1f} | {result['flipped'][0]} / {result['flipped'][1]} | "
@@ -91,7 +91,7 @@ def main():
                                    "--features", str(features), "-o", out, "--restarts", str(restarts))
                 forward = np.linalg.norm(read_obj_vertices(out + "/A_on_B.obj") - other, axis=1).mean() / diagonal(other)
                 backward = np.linalg.norm(read_obj_vertices(out + "/B_on_A.obj") - rest, axis=1).mean() / diagonal(rest)
-                emit(row(f"sets/cactus 0 - {pose}", result, "8 (farthest points)",
+                emit(row(f"sets/cactus 0 - {pose}", result, "8 (farthest points)", restarts=restarts, truth=
                          f"{100 * forward:.1f} % / {100 * backward:.1f} %"))
 
         for a, b, file, (column_a, column_b) in [
