@@ -171,7 +171,7 @@ struct Arguments {
   bool remesh_given = false, grid_given = false, first_given = false;
   int optimize = 2, restarts = 1;  // optimize: intersurface and transfer only
   bool optimize_given = false, restarts_given = false;
-  std::string method;  // intersurface and transfer only: auto, sphere or partition
+  std::optional<cmaps::IntersurfaceMethod> method;  // intersurface and transfer only
   std::uint64_t seed = 1;
   int effort = 1;
   int threads = 2;
@@ -218,9 +218,9 @@ Arguments parse(const std::vector<std::string>& args) {
     else if (arg == "--optimize") a.optimize = int(parse_integer(arg, value(), 0, 100)), a.optimize_given = true;
     else if (arg == "--restarts") a.restarts = int(parse_integer(arg, value(), 1, 100)), a.restarts_given = true;
     else if (arg == "--method") {
-      a.method = value();
-      if (a.method != "auto" && a.method != "sphere" && a.method != "partition")
-        throw UsageError("--method expects auto, sphere or partition, got '" + a.method + "'");
+      const std::string& name = value();
+      a.method = cmaps::parse_method(name);
+      if (!a.method) throw UsageError("--method expects auto, sphere or partition, got '" + name + "'");
     }
     else if (arg.size() > 1 && arg[0] == '-') throw UsageError("unknown option '" + arg + "' (see cmaps --help)");
     else if (a.command.empty()) a.command = arg;
@@ -245,7 +245,7 @@ Arguments parse(const std::vector<std::string>& args) {
     throw UsageError(a.command + " takes no --optimize (only intersurface and transfer do)");
   if (a.restarts_given && a.command != "intersurface" && a.command != "transfer" && a.command != "consistent")
     throw UsageError(a.command + " takes no --restarts (only consistent, intersurface and transfer do)");
-  if (!a.method.empty() && a.command != "intersurface" && a.command != "transfer")
+  if (a.method && a.command != "intersurface" && a.command != "transfer")
     throw UsageError(a.command + " takes no --method (only intersurface and transfer do)");
   if (a.positions && a.command != "transfer") throw UsageError(a.command + " takes no --positions (only transfer does)");
   if (a.align && a.command != "consistent") throw UsageError(a.command + " takes no --align (only consistent does)");
@@ -842,9 +842,7 @@ cmaps::IntersurfaceOptions intersurface_options(const Arguments& args) {
   options.optimize_rounds = args.optimize;
   if (args.optimize == 0) options.correspondence_weight = 0;  // the plain composition
   options.restarts = args.restarts;
-  options.method = args.method == "sphere"      ? cmaps::IntersurfaceMethod::sphere
-                   : args.method == "partition" ? cmaps::IntersurfaceMethod::partition
-                                                : cmaps::IntersurfaceMethod::automatic;
+  options.method = args.method.value_or(cmaps::IntersurfaceMethod::automatic);
   return options;
 }
 
@@ -893,7 +891,7 @@ void run_intersurface(const Arguments& args, Outcome& out) {
   out.outputs = JsonObject::array(outputs);
   const auto computed = [](double median) { return median < 0 ? std::nullopt : std::optional<double>(median); };
   out.json.add("genus", result.genus)
-      .add("method", result.method == cmaps::IntersurfaceMethod::sphere ? "sphere" : "partition")
+      .add("method", cmaps::method_name(result.method))
       .add("sphere_median_dirichlet", computed(result.sphere_median_dirichlet))
       .add("partition_median_dirichlet", computed(result.partition_median_dirichlet))
       .add_json("degenerate", JsonObject::array(std::vector<int>{ab.degenerate, ba.degenerate}))
@@ -990,7 +988,7 @@ void run_transfer(const Arguments& args, Outcome& out) {
   out.added_features = added + "]";
   out.outputs = JsonObject::array(std::vector<std::string>{args.output});
   out.json.add("genus", map.genus)
-      .add("method", map.method == cmaps::IntersurfaceMethod::sphere ? "sphere" : "partition")
+      .add("method", cmaps::method_name(map.method))
       .add("seconds_compute", map.seconds)
       .add("seed", static_cast<unsigned long long>(args.seed))
       .add("effort", args.effort)

@@ -532,9 +532,9 @@ py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, co
                           int optimize, int restarts, bool corner_images, int balance_rounds, const std::string& method,
                           std::uint64_t seed, int effort, int threads, const py::object& progress) {
   cmaps::IntersurfaceOptions options;
-  if (method == "sphere") options.method = cmaps::IntersurfaceMethod::sphere;
-  else if (method == "partition") options.method = cmaps::IntersurfaceMethod::partition;
-  else if (method != "auto") raise(PyExc_ValueError, "method must be 'auto', 'sphere' or 'partition', got '" + method + "'");
+  const std::optional<cmaps::IntersurfaceMethod> chosen = cmaps::parse_method(method);
+  if (!chosen) raise(PyExc_ValueError, "method must be 'auto', 'sphere' or 'partition', got '" + method + "'");
+  options.method = *chosen;
   options.corner_images = corner_images;
   if (balance_rounds < 0)
     raise(PyExc_ValueError, "balance_rounds must be at least 0, got " + std::to_string(balance_rounds));
@@ -574,7 +574,7 @@ py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, co
   d["features"] = features;
   d["added_features"] = result.added_features;
   d["genus"] = result.genus;
-  d["method"] = result.method == cmaps::IntersurfaceMethod::sphere ? "sphere" : "partition";
+  d["method"] = cmaps::method_name(result.method);
   const auto computed = [](double median) { return median < 0 ? py::object(py::none()) : py::object(py::float_(median)); };
   d["sphere_median_dirichlet"] = computed(result.sphere_median_dirichlet);
   d["partition_median_dirichlet"] = computed(result.partition_median_dirichlet);
@@ -1013,7 +1013,7 @@ PYBIND11_MODULE(_native, m) {
         "its rounds, 0 = no optimization: for genus 0 the plain composition of the spherical maps);\n"
         "'median_symmetric_dirichlet' (the median triangle's; the mean is dominated by a few triangles);\n"
         "genus 0: 'restart_dirichlet' and 'restart_median_dirichlet', the energies (both directions summed)\n"
-        "of each of the `restarts` maps (restart k: layout k % 3 of single pass, carried guides, aligned;\n"
+        "of each of the `restarts` maps through the sphere (restart k: layout k % 3 of single pass, carried guides, aligned;\n"
         "seed + k // 3); the one with the lowest median is returned; with restarts >= 2 the direct map (any genus)\n"
         "is also computed from B's side, the lower median kept;\n"
         "'refitted' (genus 0): whether A's map, then B's, was refitted against the other's (kept only when\n"

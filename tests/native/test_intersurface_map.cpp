@@ -212,6 +212,8 @@ TEST(IntersurfaceMap, CactusPosesMapDirectlyWithinOnePercent) {
               r.partition_median_dirichlet, r.sphere_median_dirichlet);
   EXPECT_EQ(r.method, IntersurfaceMethod::partition);
   EXPECT_LT(r.partition_median_dirichlet, r.sphere_median_dirichlet);
+  ASSERT_EQ(r.restart_median_dirichlet.size(), 1u);  // the sphere's, reported though not kept
+  EXPECT_DOUBLE_EQ(r.restart_median_dirichlet[0], r.sphere_median_dirichlet);
   EXPECT_LT(forward, 0.012);
   EXPECT_LT(backward, 0.012);
   EXPECT_LE(r.distortion_a_to_b.flipped, 3);

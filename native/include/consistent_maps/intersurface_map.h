@@ -31,8 +31,8 @@
 // Genus 0 pairs can go either way (IntersurfaceOptions::method): by default
 // both maps are computed and the one with the lower median distortion is
 // kept. The direct map follows the surfaces where they are alike (sets/
-// cactus poses: ground-truth errors 0.3-0.9 % against 1.3-2.2 % through the
-// sphere); the sphere spreads the distortion better between different shapes
+// cactus poses, one run: ground-truth errors 0.3-0.9 % against 1.6-6.8 %
+// through the sphere); the sphere spreads the distortion better between different shapes
 // (cow - horse: medians 5.2 / 4.8 against 8.4 / 7.7 direct).
 //
 // Genus 1 and higher: a direct map from a consistent partition (thesis 5.4,
@@ -60,6 +60,8 @@
 // (intersurface/hole_rims.h).
 #pragma once
 #include <array>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "consistent_maps/mesh.h"
@@ -86,6 +88,11 @@ struct SurfacePoint {
 // through a consistent partition (as every pair of genus >= 1 is), or both,
 // keeping the map with the lower summed median distortion (A -> B plus B -> A).
 enum class IntersurfaceMethod { automatic, sphere, partition };
+
+// "auto", "sphere", "partition": the names the CLI and Python use.
+const char* method_name(IntersurfaceMethod method);
+// The method of that name, or nothing for another name.
+std::optional<IntersurfaceMethod> parse_method(const std::string& name);
 
 struct IntersurfaceOptions {
   IntersurfaceMethod method = IntersurfaceMethod::automatic;
@@ -193,8 +200,9 @@ struct IntersurfaceResult {
   // (1: every patch takes the same share of both).
   bool balanced_patches = false;
   double patch_area_ratio = 1;
-  // Genus 0: per restart, the final symmetric Dirichlet energy A -> B plus
-  // B -> A: the means, and the medians, which choose the restart kept.
+  // Genus 0: per restart through the sphere, the final symmetric Dirichlet
+  // energy A -> B plus B -> A: the means, and the medians, which choose the
+  // restart kept (reported also when the direct map is kept instead).
   std::vector<double> restart_dirichlet, restart_median_dirichlet;
   MapDistortion composition_a_to_b, composition_b_to_a;
   // Wall time per stage: unconstrained maps for added features (genus 0),

@@ -306,15 +306,19 @@ void optimize_composition(const TriangleMesh& a, ConstrainedResult& map_a, const
   }
 }
 
+// The vertex of `mesh` farthest from `point`.
+int farthest_from(const TriangleMesh& mesh, const Vec3& point) {
+  int best = 0;
+  for (int v = 1; v < int(mesh.vertices.size()); ++v)
+    if ((mesh.vertices[v] - point).squaredNorm() > (mesh.vertices[best] - point).squaredNorm()) best = v;
+  return best;
+}
+
 // The vertex farthest from the centroid: the automatic feature of a mesh.
 int farthest_from_centroid(const TriangleMesh& mesh) {
   Vec3 centroid = Vec3::Zero();
   for (const Vec3& v : mesh.vertices) centroid += v;
-  centroid /= double(mesh.vertices.size());
-  int best = 0;
-  for (int v = 1; v < int(mesh.vertices.size()); ++v)
-    if ((mesh.vertices[v] - centroid).squaredNorm() > (mesh.vertices[best] - centroid).squaredNorm()) best = v;
-  return best;
+  return farthest_from(mesh, centroid / double(mesh.vertices.size()));
 }
 
 // A -> B plus B -> A median distortion: what chooses between maps of one pair.
@@ -405,14 +409,12 @@ void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, Intersurf
   }
   if (result.genus == 0 && pairs.size() == 1 && closed_a.loops.empty()) {
     // A sphere's partition grows from a path: a second pair, A's vertex
-    // farthest from the first and B's nearest to it in A's frame.
-    int far_a = 0;
-    const Vec3& first = a.vertices[pairs[0][0]];
-    for (int v = 1; v < int(a.vertices.size()); ++v)
-      if ((a.vertices[v] - first).squaredNorm() > (a.vertices[far_a] - first).squaredNorm()) far_a = v;
-    const PathGuide guide({first}, {b.vertices[pairs[0][1]]}, a, b);
-    int near_b = guide.nearest(a.vertices[far_a], b.vertices);
-    if (near_b == pairs[0][1]) near_b = (near_b + 1) % int(b.vertices.size());
+    // farthest from the first and B's nearest to it in A's frame (B's
+    // farthest from its first if that is the first itself).
+    const Vec3 &first_a = a.vertices[pairs[0][0]], &first_b = b.vertices[pairs[0][1]];
+    const int far_a = farthest_from(a, first_a);
+    int near_b = PathGuide({first_a}, {first_b}, a, b).nearest(a.vertices[far_a], b.vertices);
+    if (near_b == pairs[0][1]) near_b = farthest_from(b, first_b);
     pairs.push_back({far_a, near_b});
   }
   TriangleMesh b_like_a = closed_b.mesh;
@@ -709,6 +711,20 @@ std::vector<Vec3> surface_positions(const TriangleMesh& target, const std::vecto
   return positions;
 }
 
+const char* method_name(IntersurfaceMethod method) {
+  switch (method) {
+    case IntersurfaceMethod::sphere: return "sphere";
+    case IntersurfaceMethod::partition: return "partition";
+    default: return "auto";
+  }
+}
+
+std::optional<IntersurfaceMethod> parse_method(const std::string& name) {
+  for (IntersurfaceMethod m : {IntersurfaceMethod::automatic, IntersurfaceMethod::sphere, IntersurfaceMethod::partition})
+    if (name == method_name(m)) return m;
+  return std::nullopt;
+}
+
 MapDistortion measure_intersurface_map(const TriangleMesh& source, const TriangleMesh& target,
                                        const std::vector<SurfacePoint>& image) {
   if (image.size() != source.vertices.size())
@@ -831,10 +847,12 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
   if (options.grid < 2 || options.grid % 2 != 0)
     throw InvalidInput("grid must be even and at least 2, got " + std::to_string(options.grid));
 
-  // Automatic: the direct map too (a partition that gets stuck leaves the sphere's).
+  // Automatic: the direct map too (a partition that gets stuck leaves the
+  // sphere's, a sphere that refuses a hole ringed by too few pairs the
+  // partition's, which pairs holes itself).
   const bool both = options.method == IntersurfaceMethod::automatic;
   IntersurfaceResult direct = result;
-  bool have_direct = false;
+  bool have_direct = false, have_sphere = true;
   if (both) {
     try {
       map_directly(a, b, direct, options, slice(progress, 0, 0.3));
@@ -846,26 +864,26 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
   }
   try {
     map_through_sphere_restarts(a, b, features, result, options, slice(progress, both ? 0.3 : 0, 1));
+    result.method = IntersurfaceMethod::sphere;
+    result.sphere_median_dirichlet = summed_median(result);
   } catch (const Cancelled&) {
     throw;
   } catch (const Error&) {
-    // e.g. a hole ringed by fewer than 3 pairs: the partition pairs holes itself
     if (!have_direct) throw;
-    direct.partition_median_dirichlet = summed_median(direct);
-    result = std::move(direct);
-    if (progress && !progress(1, "done")) throw Cancelled();
-    result.seconds = seconds_since(start);
-    return result;
+    have_sphere = false;
   }
-  result.method = IntersurfaceMethod::sphere;
-  result.sphere_median_dirichlet = summed_median(result);
   if (have_direct) {
-    result.partition_median_dirichlet = direct.partition_median_dirichlet = summed_median(direct);
-    direct.sphere_median_dirichlet = result.sphere_median_dirichlet;
-    direct.method = IntersurfaceMethod::partition;
-    const bool direct_wins = summed_median(direct) < summed_median(result);
+    result.partition_median_dirichlet = summed_median(direct);
+    const bool direct_wins = !have_sphere || summed_median(direct) < summed_median(result);
     add_stage_seconds(direct_wins ? direct : result, direct_wins ? result : direct);
-    if (direct_wins) result = std::move(direct);
+    if (direct_wins) {
+      direct.method = IntersurfaceMethod::partition;
+      direct.sphere_median_dirichlet = result.sphere_median_dirichlet;
+      direct.partition_median_dirichlet = result.partition_median_dirichlet;
+      direct.restart_dirichlet = std::move(result.restart_dirichlet);
+      direct.restart_median_dirichlet = std::move(result.restart_median_dirichlet);
+      result = std::move(direct);
+    }
   }
   if (progress && !progress(1, "done")) throw Cancelled();
   result.seconds = seconds_since(start);
