@@ -334,6 +334,32 @@ TEST(IntersurfaceMap, RoundTripIsCloseToIdentity) {
   EXPECT_LT(sum / double(d.cat.vertices.size()) / diagonal(d.cat), 0.01);
 }
 
+// Automatic mode computes the sphere's map and the direct map side by side:
+// the caller sees one monotone progress, and stopping it stops both.
+TEST(IntersurfaceMap, AutomaticProgressIsMonotoneAndCancellable) {
+  const TriangleMesh a = read_mesh(shared_mesh("genus0/spot_low.obj"));
+  const TriangleMesh b = read_mesh(shared_mesh("genus0/sphere.obj"));
+  IntersurfaceOptions options;
+  options.sphere.effort = 0;
+  std::vector<double> seen;
+  const IntersurfaceResult r = intersurface_map(a, b, {}, options, [&](double f, const std::string&) {
+    seen.push_back(f);
+    return true;
+  });
+  EXPECT_GT(r.sphere_median_dirichlet, 0);
+  EXPECT_GT(r.partition_median_dirichlet, 0);
+  ASSERT_GE(seen.size(), 10u);
+  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+  EXPECT_DOUBLE_EQ(seen.back(), 1.0);
+  for (const std::size_t stop_at : {std::size_t(3), seen.size() / 2, seen.size() - 2}) {
+    std::size_t calls = 0;
+    EXPECT_THROW(intersurface_map(a, b, {}, options, [&](double, const std::string&) { return ++calls < stop_at; }),
+                 Cancelled)
+        << "stopped at call " << stop_at;
+    EXPECT_LE(calls, stop_at + 2);  // no call after the stop but the other side's one
+  }
+}
+
 TEST(IntersurfaceMap, ZeroFeaturesGetAValidMap) {
   const TriangleMesh a = read_mesh(shared_mesh("genus0/spot_low.obj"));
   const TriangleMesh b = read_mesh(shared_mesh("genus0/sphere.obj"));

@@ -14,6 +14,7 @@
 #include <tuple>
 
 #include "common/parallel_for.h"
+#include "common/side_by_side.h"
 #include "consistent_maps/consistent_parameterization.h"
 #include "consistent_maps/errors.h"
 #include "consistent_maps/mesh_check.h"
@@ -653,18 +654,15 @@ void exchange_sides(IntersurfaceResult& r) {
 // 0.8 % off the truth one way and 2.0 % the other), the lower summed median kept.
 void map_directly(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResult& result,
                   const IntersurfaceOptions& options, const ProgressCallback& progress) {
-  const bool both_ways = options.restarts >= 2;
+  if (options.restarts < 2) return map_through_patches(a, b, result, options, progress);
   IntersurfaceResult backward = result;
-  map_through_patches(a, b, result, options, slice(progress, 0, both_ways ? 0.5 : 1));
-  if (!both_ways) return;
   exchange_sides(backward);
-  try {
-    map_through_patches(b, a, backward, options, slice(progress, 0.5, 1));
-  } catch (const Cancelled&) {
-    throw;
-  } catch (const Error&) {
-    return;  // the forward map serves
-  }
+  const auto [forward_error, backward_error] = run_side_by_side(
+      progress, 0.5, [&](const ProgressCallback& part) { map_through_patches(a, b, result, options, part); },
+      [&](const ProgressCallback& part) { map_through_patches(b, a, backward, options, part); });
+  const bool backward_failed = failed_with_error(backward_error);  // a cancellation rethrown
+  if (forward_error) std::rethrow_exception(forward_error);
+  if (backward_failed) return;  // the forward map serves
   exchange_sides(backward);
   const bool better = summed_median(backward) < summed_median(result);
   add_stage_seconds(better ? backward : result, better ? result : backward);
@@ -847,30 +845,28 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
   if (options.grid < 2 || options.grid % 2 != 0)
     throw InvalidInput("grid must be even and at least 2, got " + std::to_string(options.grid));
 
-  // Automatic: the direct map too (a partition that gets stuck leaves the
-  // sphere's, a sphere that refuses a hole ringed by too few pairs the
-  // partition's, which pairs holes itself).
-  const bool both = options.method == IntersurfaceMethod::automatic;
+  // Automatic: the direct map too, side by side with the sphere's (a
+  // partition that gets stuck leaves the sphere's map, a sphere that refuses
+  // a hole ringed by too few pairs the partition's, which pairs holes itself).
   IntersurfaceResult direct = result;
+  const auto through_sphere = [&](const ProgressCallback& part) {
+    map_through_sphere_restarts(a, b, features, result, options, part);
+  };
   bool have_direct = false, have_sphere = true;
-  if (both) {
-    try {
-      map_directly(a, b, direct, options, slice(progress, 0, 0.3));
-      have_direct = true;
-    } catch (const Cancelled&) {
-      throw;
-    } catch (const Error&) {
-    }
+  if (options.method == IntersurfaceMethod::sphere) {
+    through_sphere(progress);
+  } else {
+    const auto [direct_error, sphere_error] = run_side_by_side(
+        progress, 0.3, [&](const ProgressCallback& part) { map_directly(a, b, direct, options, part); },
+        through_sphere);
+    const bool direct_failed = failed_with_error(direct_error), sphere_failed = failed_with_error(sphere_error);
+    if (direct_failed && sphere_failed) std::rethrow_exception(sphere_error);
+    have_direct = !direct_error;
+    have_sphere = !sphere_error;
   }
-  try {
-    map_through_sphere_restarts(a, b, features, result, options, slice(progress, both ? 0.3 : 0, 1));
+  if (have_sphere) {
     result.method = IntersurfaceMethod::sphere;
     result.sphere_median_dirichlet = summed_median(result);
-  } catch (const Cancelled&) {
-    throw;
-  } catch (const Error&) {
-    if (!have_direct) throw;
-    have_sphere = false;
   }
   if (have_direct) {
     result.partition_median_dirichlet = summed_median(direct);
