@@ -131,10 +131,10 @@ options:
                      partition_median_dirichlet). The direct map follows
                      shapes that are alike (poses of one shape); the sphere
                      spreads the distortion between different shapes.
-  --restarts K       intersurface, transfer: with K >= 2 the direct map (any
-                     genus) is also traced and optimized from B's side and
-                     the less distorted kept; through the sphere (genus 0),
-                     compute the map K times
+  --restarts K       intersurface, transfer: through the sphere (genus 0),
+                     compute the map K times (the direct map is always
+                     traced and optimized from both sides, the less
+                     distorted kept)
                      and keep the least distorted (lowest median symmetric
                      Dirichlet energy; 1..100, default 1): restart
                      k uses seed N + k/3 and, in turn, a consistent

@@ -29,8 +29,8 @@
 // correspondence where nothing constrains it.
 //
 // Genus 0 pairs can go either way (IntersurfaceOptions::method): by default
-// both maps are computed and the one with the lower median distortion is
-// kept. The direct map follows the surfaces where they are alike (sets/
+// both maps are computed, side by side on two threads, and the one with the
+// lower median distortion is kept. The direct map follows the surfaces where they are alike (sets/
 // cactus poses, one run: ground-truth errors 0.3-0.9 % against 1.6-6.8 %
 // through the sphere); the sphere spreads the distortion better between different shapes
 // (cow - horse: medians 5.2 / 4.8 against 8.4 / 7.7 direct).
@@ -119,8 +119,8 @@ struct IntersurfaceOptions {
   // starting parameterization: with few features the spread is wide
   // (sets/cactus 0 -> 3, 8 features: ground-truth error 2.2-7.9 % over six
   // starts), and the energy ranks the maps nearly like the true error does.
-  // The direct map (any genus) with 2 or more: also traced and optimized from
-  // B's side, the lower median kept (it is deterministic: two starts only).
+  // Restarts are the sphere's only: the direct map (any genus) is always
+  // traced and optimized from both sides, the lower median kept.
   int restarts = 1;
   // Also map every triangle corner of A and of B (IntersurfaceResult::
   // a_corners_to_b, b_corners_to_a), for transferring per-corner values such
