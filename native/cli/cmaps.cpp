@@ -130,17 +130,17 @@ options:
                      median distortion (JSON: method, sphere_median_dirichlet,
                      partition_median_dirichlet). The direct map follows
                      shapes that are alike (poses of one shape); the sphere
-                     spreads the distortion between different shapes.
+                     spreads the distortion between different shapes. The
+                     direct map (any genus) is traced and optimized from A's
+                     side and from B's, the less distorted kept.
   --restarts K       intersurface, transfer: through the sphere (genus 0),
-                     compute the map K times (the direct map is always
-                     traced and optimized from both sides, the less
-                     distorted kept)
-                     and keep the least distorted (lowest median symmetric
-                     Dirichlet energy; 1..100, default 1): restart
-                     k uses seed N + k/3 and, in turn, a consistent
-                     parameterization in one pass, with carried guides, and
-                     with carried guides and B aligned to A; the optimization
-                     is local, so with few features restarts find better maps.
+                     compute the map K times and keep the least distorted
+                     (lowest median symmetric Dirichlet energy; 1..100,
+                     default 1): restart k uses seed N + k/3 and, in turn, a
+                     consistent parameterization in one pass, with carried
+                     guides, and with carried guides and B aligned to A; the
+                     optimization is local, so with few features restarts
+                     find better maps.
                      consistent: compute the set K times (seed N + k) and keep
                      the one whose maps keep most of each input's own
                      efficiency (with few features a run can twist one

@@ -660,10 +660,15 @@ void map_directly(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResu
   const auto [forward_error, backward_error] = run_side_by_side(
       progress, 0.5, [&](const ProgressCallback& part) { map_through_patches(a, b, result, options, part); },
       [&](const ProgressCallback& part) { map_through_patches(b, a, backward, options, part); });
-  const bool backward_failed = failed_with_error(backward_error);  // a cancellation rethrown
-  if (forward_error) std::rethrow_exception(forward_error);
-  if (backward_failed) return;  // the forward map serves
+  // A cancellation is rethrown; a side that gets stuck leaves the other's map.
+  const bool forward_failed = failed_with_error(forward_error), backward_failed = failed_with_error(backward_error);
+  if (forward_failed && backward_failed) std::rethrow_exception(forward_error);
+  if (backward_failed) return;
   exchange_sides(backward);
+  if (forward_failed) {
+    result = std::move(backward);
+    return;
+  }
   const bool better = summed_median(backward) < summed_median(result);
   add_stage_seconds(better ? backward : result, better ? result : backward);
   if (better) result = std::move(backward);
