@@ -648,6 +648,24 @@ void exchange_sides(IntersurfaceResult& r) {
   std::swap(r.steiner_a, r.steiner_b);
 }
 
+// Of two maps computed side by side, the one to keep, left in `first`: a
+// cancellation is rethrown, a map whose computation failed leaves the other
+// (both failed: first's error rethrown), else the lower summed median wins,
+// the other's stage times added.
+void keep_less_distorted(IntersurfaceResult& first, const std::exception_ptr& first_error,
+                         IntersurfaceResult& second, const std::exception_ptr& second_error) {
+  const bool first_failed = failed_with_error(first_error), second_failed = failed_with_error(second_error);
+  if (first_failed && second_failed) std::rethrow_exception(first_error);
+  if (second_failed) return;
+  if (first_failed) {
+    first = std::move(second);
+    return;
+  }
+  const bool second_wins = summed_median(second) < summed_median(first);
+  add_stage_seconds(second_wins ? second : first, second_wins ? first : second);
+  if (second_wins) first = std::move(second);
+}
+
 // The direct map through a partition, traced and optimized from A's side and
 // from B's side at once, the lower summed median kept: the partition is
 // traced on A first and A's embedding moves against B's, so the two differ
@@ -660,18 +678,8 @@ void map_directly(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResu
   const auto [forward_error, backward_error] = run_side_by_side(
       progress, 0.5, [&](const ProgressCallback& part) { map_through_patches(a, b, result, options, part); },
       [&](const ProgressCallback& part) { map_through_patches(b, a, backward, options, part); });
-  // A cancellation is rethrown; a side that gets stuck leaves the other's map.
-  const bool forward_failed = failed_with_error(forward_error), backward_failed = failed_with_error(backward_error);
-  if (forward_failed && backward_failed) std::rethrow_exception(forward_error);
-  if (backward_failed) return;
-  exchange_sides(backward);
-  if (forward_failed) {
-    result = std::move(backward);
-    return;
-  }
-  const bool better = summed_median(backward) < summed_median(result);
-  add_stage_seconds(better ? backward : result, better ? result : backward);
-  if (better) result = std::move(backward);
+  if (!backward_error) exchange_sides(backward);
+  keep_less_distorted(result, forward_error, backward, backward_error);
 }
 
 // Genus 0 through the sphere: options.restarts maps, the one with the lowest
@@ -853,38 +861,26 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
   // Automatic: the direct map too, side by side with the sphere's (a
   // partition that gets stuck leaves the sphere's map, a sphere that refuses
   // a hole ringed by too few pairs the partition's, which pairs holes itself).
-  IntersurfaceResult direct = result;
   const auto through_sphere = [&](const ProgressCallback& part) {
     map_through_sphere_restarts(a, b, features, result, options, part);
+    result.method = IntersurfaceMethod::sphere;
+    result.sphere_median_dirichlet = summed_median(result);
   };
-  bool have_direct = false, have_sphere = true;
   if (options.method == IntersurfaceMethod::sphere) {
     through_sphere(progress);
   } else {
+    IntersurfaceResult direct = result;
     const auto [direct_error, sphere_error] = run_side_by_side(
         progress, 0.3, [&](const ProgressCallback& part) { map_directly(a, b, direct, options, part); },
         through_sphere);
-    const bool direct_failed = failed_with_error(direct_error), sphere_failed = failed_with_error(sphere_error);
-    if (direct_failed && sphere_failed) std::rethrow_exception(sphere_error);
-    have_direct = !direct_error;
-    have_sphere = !sphere_error;
-  }
-  if (have_sphere) {
-    result.method = IntersurfaceMethod::sphere;
-    result.sphere_median_dirichlet = summed_median(result);
-  }
-  if (have_direct) {
-    result.partition_median_dirichlet = summed_median(direct);
-    const bool direct_wins = !have_sphere || summed_median(direct) < summed_median(result);
-    add_stage_seconds(direct_wins ? direct : result, direct_wins ? result : direct);
-    if (direct_wins) {
-      direct.method = IntersurfaceMethod::partition;
-      direct.sphere_median_dirichlet = result.sphere_median_dirichlet;
-      direct.partition_median_dirichlet = result.partition_median_dirichlet;
-      direct.restart_dirichlet = std::move(result.restart_dirichlet);
-      direct.restart_median_dirichlet = std::move(result.restart_median_dirichlet);
-      result = std::move(direct);
-    }
+    // Either map kept reports both medians and the sphere's restarts.
+    if (!direct_error) result.partition_median_dirichlet = summed_median(direct);
+    direct.method = IntersurfaceMethod::partition;
+    direct.sphere_median_dirichlet = result.sphere_median_dirichlet;
+    direct.partition_median_dirichlet = result.partition_median_dirichlet;
+    direct.restart_dirichlet = result.restart_dirichlet;
+    direct.restart_median_dirichlet = result.restart_median_dirichlet;
+    keep_less_distorted(result, sphere_error, direct, direct_error);
   }
   if (progress && !progress(1, "done")) throw Cancelled();
   result.seconds = seconds_since(start);
