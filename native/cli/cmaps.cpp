@@ -90,7 +90,7 @@ commands:
            added automatically. The map is optimized for symmetric distortion
            (--optimize rounds, each moving A's vertices then B's); genus >= 1
            maps also go through the partition with its patches' areas
-           balanced, kept when that lowers the median distortion (JSON:
+           balanced, kept when less distorted (as for --method; JSON:
            balanced_patches, patch_area_ratio).
   transfer map TARGET onto SOURCE as `intersurface` does and write OUT.obj:
            TARGET's faces and vertex order with SOURCE's vertex colours
@@ -126,16 +126,19 @@ options:
                      two spherical maps, neither refitted to the other)
   --method M         intersurface, transfer (genus 0): map through the common
                      sphere, directly through a consistent partition as for
-                     genus >= 1, or auto (default): both, keeping the lower
-                     median distortion (JSON: method, sphere_median_dirichlet,
-                     partition_median_dirichlet). The direct map follows
+                     genus >= 1, or auto (default): both, keeping the less
+                     distorted: the lower summed median (JSON: method,
+                     sphere_median_dirichlet, partition_median_dirichlet),
+                     or, for medians within 5 % of each other, the fewer
+                     folded samples (JSON: flipped) if the counts differ by
+                     more than 0.5 % of the triangles. The direct map follows
                      shapes that are alike (poses of one shape); the sphere
                      spreads the distortion between different shapes. The
                      direct map (any genus) is traced and optimized from A's
                      side and from B's, the less distorted kept.
   --restarts K       intersurface, transfer: through the sphere (genus 0),
                      compute the map K times and keep the least distorted
-                     (lowest median symmetric Dirichlet energy; 1..100,
+                     (as for --method auto; 1..100,
                      default 1): restart k uses seed N + k/3 and, in turn, a
                      consistent parameterization in one pass, with carried
                      guides, and with carried guides and B aligned to A; the
@@ -910,6 +913,7 @@ void run_intersurface(const Arguments& args, Outcome& out) {
                                                       result.composition_b_to_a.symmetric_dirichlet}))
       .add("restart_dirichlet", result.restart_dirichlet)
       .add("restart_median_dirichlet", result.restart_median_dirichlet)
+      .add_json("restart_flipped", JsonObject::array(result.restart_flipped))
       .add("seconds_partition", result.seconds_partition)
       .add("seconds_parameterize", result.seconds_parameterize)
       .add("seconds_optimize", result.seconds_optimize)

@@ -590,6 +590,7 @@ py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, co
   d["steiner"] = py::make_tuple(result.steiner_a, result.steiner_b);
   d["restart_dirichlet"] = to_numpy(result.restart_dirichlet);
   d["restart_median_dirichlet"] = to_numpy(result.restart_median_dirichlet);
+  d["restart_flipped"] = py::array_t<int>(result.restart_flipped.size(), result.restart_flipped.data());
   d["median_symmetric_dirichlet"] = py::make_tuple(ab.median_symmetric_dirichlet, ba.median_symmetric_dirichlet);
   d["seconds"] = seconds;
   d["base_vertices"] = result.base_vertices;
@@ -1012,15 +1013,17 @@ PYBIND11_MODULE(_native, m) {
         "'flipped', 'degenerate', and 'composition_dirichlet' before the distortion optimization (optimize:\n"
         "its rounds, 0 = no optimization: for genus 0 the plain composition of the spherical maps);\n"
         "'median_symmetric_dirichlet' (the median triangle's; the mean is dominated by a few triangles);\n"
-        "genus 0: 'restart_dirichlet' and 'restart_median_dirichlet', the energies (both directions summed)\n"
+        "genus 0: 'restart_dirichlet', 'restart_median_dirichlet' and 'restart_flipped', the energies and folded\n"
+        "samples (both directions summed)\n"
         "of each of the `restarts` maps through the sphere (restart k: layout k % 3 of single pass, carried guides, aligned;\n"
-        "seed + k // 3); the one with the lowest median is returned; the direct map (any genus) is computed\n"
-        "from A's side and from B's side, the lower median kept;\n"
+        "seed + k // 3); the least distorted is returned (the lowest summed median; medians within 5 % of each\n"
+        "other: the fewer folded samples, 'flipped', if they differ by over 0.5 % of the triangles); the direct map (any genus) is computed from A's side and\n"
+        "from B's side, and method 'auto' computes both maps, each time keeping the less distorted;\n"
         "'refitted' (genus 0): whether A's map, then B's, was refitted against the other's (kept only when\n"
         "that lowers the medians);\n"
         "'balanced_patches' (genus >= 1): whether the map went through the partition with its paths moved to\n"
-        "balance corresponding patches' areas (balance_rounds rounds, 0 = not tried; kept only when that lowers the\n"
-        "medians), 'patch_area_ratio': the largest ratio of a patch's shares of A's and B's area in the partition used;\n"
+        "balance corresponding patches' areas (balance_rounds rounds, 0 = not tried; kept only when less\n"
+        "distorted, as for method), 'patch_area_ratio': the largest ratio of a patch's shares of A's and B's area in the partition used;\n"
         "'sphere_flipped', 'stretch_efficiency' and 'steiner' of the two spherical maps (genus 0);\n"
         "'seconds' and per stage. Raises InvalidMeshError for different genus,\n"
         "non-manifold meshes or bad pairs, Cancelled when progress returns False.");

@@ -24,6 +24,14 @@ using test::expect_exact_features;
 using test::expect_valid_points;
 using test::shared_mesh;
 
+// Mean distance of mapped vertex i from truth vertex i over the truth's
+// bounding-box diagonal (meshes sharing vertex order).
+double truth_error(const std::vector<Vec3>& mapped, const TriangleMesh& truth) {
+  double sum = 0;
+  for (std::size_t v = 0; v < truth.vertices.size(); ++v) sum += (mapped[v] - truth.vertices[v]).norm();
+  return sum / (truth.vertices.size() * diagonal(truth));
+}
+
 // Measured 1.6 % (effort 0; 2.0 % for the plain composition); a map ignoring the landmarks is off by 30 %.
 constexpr double kLion2CatTolerance = 0.03;
 
@@ -156,11 +164,7 @@ TEST(IntersurfaceMap, CactusRefitsBothMapsWhenTheMedianDrops) {
   const TriangleMesh b = read_mesh(shared_mesh("sets/cactus/cactus1.ply"));
   std::vector<FeaturePair> features;
   for (int v : test::farthest_points(a, 8)) features.push_back({v, v});
-  const auto error = [&](const IntersurfaceResult& r) {
-    double sum = 0;
-    for (std::size_t v = 0; v < b.vertices.size(); ++v) sum += (r.a_on_b[v] - b.vertices[v]).norm();
-    return sum / (b.vertices.size() * diagonal(b));
-  };
+  const auto error = [&](const IntersurfaceResult& r) { return truth_error(r.a_on_b, b); };
   IntersurfaceOptions sphere;
   sphere.method = IntersurfaceMethod::sphere;
   const IntersurfaceResult one = intersurface_map(a, b, features, sphere);
@@ -176,8 +180,8 @@ TEST(IntersurfaceMap, CactusRefitsBothMapsWhenTheMedianDrops) {
   EXPECT_EQ(one.sphere_flipped, 0);
 
   // Three restarts, one per layout of the pair's consistent
-  // parameterization: the lowest median wins (measured, summed both ways:
-  // 8.49 / 8.38 / 8.52, the carried guides 2.2 % off the truth).
+  // parameterization: the least distorted wins (measured, summed both ways:
+  // medians 8.49 / 8.38 / 8.52, the carried guides 2.2 % off the truth).
   IntersurfaceOptions options = sphere;
   options.restarts = 3;
   const IntersurfaceResult r = intersurface_map(a, b, features, options);
@@ -187,8 +191,19 @@ TEST(IntersurfaceMap, CactusRefitsBothMapsWhenTheMedianDrops) {
               100 * error(r));
   EXPECT_EQ(medians[0],
             one.distortion_a_to_b.median_symmetric_dirichlet + one.distortion_b_to_a.median_symmetric_dirichlet);
-  EXPECT_EQ(r.distortion_a_to_b.median_symmetric_dirichlet + r.distortion_b_to_a.median_symmetric_dirichlet,
-            *std::min_element(medians.begin(), medians.end()));
+  // No restart beats the one kept: none has a median more than 5 % lower,
+  // or one within 5 % and fewer folded samples by over 0.5 % of the
+  // triangles.
+  ASSERT_EQ(r.restart_flipped.size(), 3u);
+  const double kept = r.distortion_a_to_b.median_symmetric_dirichlet + r.distortion_b_to_a.median_symmetric_dirichlet;
+  const int kept_folds = r.distortion_a_to_b.flipped + r.distortion_b_to_a.flipped;
+  EXPECT_NE(std::find(medians.begin(), medians.end(), kept), medians.end());
+  for (std::size_t k = 0; k < 3; ++k) {
+    const bool tie = std::abs(medians[k] - kept) <= 0.05 * std::min(medians[k], kept);
+    const bool by_folds =
+        tie && std::abs(r.restart_flipped[k] - kept_folds) > 0.005 * (a.triangles.size() + b.triangles.size());
+    EXPECT_FALSE(by_folds ? r.restart_flipped[k] < kept_folds : medians[k] < kept) << "restart " << k;
+  }
   EXPECT_LT(error(r), 0.025);
 }
 
@@ -203,10 +218,7 @@ TEST(IntersurfaceMap, CactusPosesMapDirectlyWithinOnePercent) {
   std::vector<FeaturePair> features;
   for (int v : test::farthest_points(a, 8)) features.push_back({v, v});
   const IntersurfaceResult r = intersurface_map(a, b, features);
-  double forward = 0, backward = 0;
-  for (std::size_t v = 0; v < b.vertices.size(); ++v)
-    forward += (r.a_on_b[v] - b.vertices[v]).norm(), backward += (r.b_on_a[v] - a.vertices[v]).norm();
-  forward /= b.vertices.size() * diagonal(b), backward /= a.vertices.size() * diagonal(a);
+  const double forward = truth_error(r.a_on_b, b), backward = truth_error(r.b_on_a, a);
   std::printf("cactus 0 -> 1 direct: %.2f %% / %.2f %%, flipped %d / %d, summed medians %.3f (sphere %.3f)\n",
               100 * forward, 100 * backward, r.distortion_a_to_b.flipped, r.distortion_b_to_a.flipped,
               r.partition_median_dirichlet, r.sphere_median_dirichlet);
@@ -245,18 +257,16 @@ TEST(IntersurfaceMap, CactusPosesMapDirectlyWithinOnePercent) {
 
 // Pose 2 onto pose 0 with 12 features: the sphere's map has the lower summed
 // median (8.23 against 8.33, within 5 %) but folds about 200 sampled
-// triangles and lies 1.5 % off the truth; the direct map folds none and lies
-// 0.7 % off. Medians that close are a tie, and fewer folds break it.
+// triangles (1 % of the 21,036) and lies 1.5 % off the truth; the direct map
+// folds none and lies 0.7 % off. Medians that close are a tie, and clearly
+// fewer folds break it.
 TEST(IntersurfaceMap, MediansWithinFivePercentGoToTheMapWithFewerFolds) {
   const TriangleMesh a = read_mesh(shared_mesh("sets/cactus/cactus2.ply"));
   const TriangleMesh b = read_mesh(shared_mesh("sets/cactus/cactus0.ply"));
   std::vector<FeaturePair> features;
   for (int v : test::farthest_points(b, 12)) features.push_back({v, v});
   const IntersurfaceResult r = intersurface_map(a, b, features);
-  double forward = 0, backward = 0;
-  for (std::size_t v = 0; v < b.vertices.size(); ++v)
-    forward += (r.a_on_b[v] - b.vertices[v]).norm(), backward += (r.b_on_a[v] - a.vertices[v]).norm();
-  forward /= b.vertices.size() * diagonal(b), backward /= a.vertices.size() * diagonal(a);
+  const double forward = truth_error(r.a_on_b, b), backward = truth_error(r.b_on_a, a);
   std::printf("cactus 2 -> 0, 12 features: %s, %.2f %% / %.2f %%, flipped %d / %d, summed medians %.3f (sphere %.3f)\n",
               method_name(r.method), 100 * forward, 100 * backward, r.distortion_a_to_b.flipped,
               r.distortion_b_to_a.flipped, r.partition_median_dirichlet, r.sphere_median_dirichlet);

@@ -101,10 +101,18 @@ def test_zero_features_get_a_valid_map(native):
         native.intersurface_map(a, b, [], optimize=-1)
 
 
+def less_distorted(median, folds, other_median, other_folds, samples):
+    """The library's choice between two maps of a pair: the lower summed median, but medians within 5 % of
+    each other are a tie that fewer folded samples break when the counts differ by more than 0.5 % of the
+    `samples` (A's triangles plus B's)."""
+    if abs(folds - other_folds) > 0.005 * samples and abs(median - other_median) <= 0.05 * min(median, other_median):
+        return folds < other_folds
+    return median < other_median
+
+
 def test_restarts_keep_the_least_distorted_map(native):
     """Restart 0 is the map computed with the seed, restart 3 with seed + 1 (restarts 1 and 2 lay the pair
-    out with carried guides, then also aligned: not reachable alone); the one with the lowest summed median
-    energy is returned."""
+    out with carried guides, then also aligned: not reachable alone); the least distorted is returned."""
     a, b = native.read_mesh(str(SPOT)), native.read_mesh(str(SPHERE))
     pairs = [[0, 0], [100, 50], [200, 300], [300, 350]]
     best = native.intersurface_map(a, b, pairs, effort=0, seed=5, restarts=4, method="sphere")
@@ -113,12 +121,16 @@ def test_restarts_keep_the_least_distorted_map(native):
     assert [best["restart_dirichlet"][k] for k in singles] == [sum(r["symmetric_dirichlet"]) for r in singles.values()]
     assert [best["restart_median_dirichlet"][k] for k in singles] == \
         [sum(r["median_symmetric_dirichlet"]) for r in singles.values()]
+    assert [best["restart_flipped"][k] for k in singles] == [sum(r["flipped"]) for r in singles.values()]
     energies = best["restart_median_dirichlet"].tolist()
     assert len(energies) == 4 and len(best["restart_dirichlet"]) == 4
     # The starts do lead to different maps (here the carried guides, with neither refit kept, and the
     # aligned layout end in the same one).
     assert len(set(energies)) >= 3
-    assert sum(best["median_symmetric_dirichlet"]) == min(energies)
+    kept = sum(best["median_symmetric_dirichlet"]), sum(best["flipped"])
+    assert kept[0] in energies
+    samples = len(a[1]) + len(b[1])
+    assert not any(less_distorted(m, f, *kept, samples) for m, f in zip(energies, best["restart_flipped"].tolist()))
     assert sum(best["symmetric_dirichlet"]) in best["restart_dirichlet"].tolist()
     expect_valid(best["a_to_b_triangle"], best["a_to_b_barycentric"], b[1])
     expect_exact(best, a, b)
@@ -171,8 +183,8 @@ def expect_holes_onto_holes(r, a, b):
 
 
 def test_genus_zero_methods(native):
-    """Genus 0 pairs go through the sphere, directly through a partition, or (auto) both, keeping the lower
-    summed median; each computed map's median is reported."""
+    """Genus 0 pairs go through the sphere, directly through a partition, or (auto) both, keeping the less
+    distorted; each computed map's median is reported."""
     from test_consistent import FACES, boundary_loops, farthest_points
     a, b = native.read_mesh(str(FACES[0])), native.read_mesh(str(FACES[1]))
     loops = boundary_loops(a[1])
@@ -180,13 +192,17 @@ def test_genus_zero_methods(native):
     both = native.intersurface_map(a, b, pairs)
     medians = {m: both[f"{m}_median_dirichlet"] for m in ("sphere", "partition")}
     assert None not in medians.values()
-    assert both["method"] == min(medians, key=medians.get)
     assert sum(both["median_symmetric_dirichlet"]) == pytest.approx(medians[both["method"]])
+    folds = {}
     for method in ("sphere", "partition"):
         one = native.intersurface_map(a, b, pairs, method=method)
         assert one["method"] == method and one[f"{method}_median_dirichlet"] == pytest.approx(medians[method])
         other = "partition" if method == "sphere" else "sphere"
         assert one[f"{other}_median_dirichlet"] is None
+        folds[method] = sum(one["flipped"])
+    dropped = "partition" if both["method"] == "sphere" else "sphere"
+    assert not less_distorted(medians[dropped], folds[dropped], medians[both["method"]], folds[both["method"]],
+                              len(a[1]) + len(b[1]))
     with pytest.raises(ValueError, match="method must be 'auto', 'sphere' or 'partition', got 'direct'"):
         native.intersurface_map(a, b, pairs, method="direct")
     torus = native.read_mesh(str(TORUS))

@@ -29,12 +29,14 @@
 // correspondence where nothing constrains it.
 //
 // Genus 0 pairs can go either way (IntersurfaceOptions::method): by default
-// both maps are computed, side by side on two threads, and the one with the
-// lower median distortion is kept. The direct map follows the surfaces where
-// they are alike (sets/cactus poses, one run: ground-truth errors 0.3-0.9 %
-// against 1.6-6.8 % through the sphere); the sphere spreads the distortion
-// better between different shapes (cow - horse: summed medians 9.9 against
-// 13.6 direct).
+// both maps are computed, side by side on two threads, and the less
+// distorted one is kept: the lower summed median, except that medians within
+// 5 % of each other are a tie, broken by fewer folded samples when the counts
+// differ by more than 0.5 % of the triangles. The direct
+// map follows the surfaces where they are alike (sets/cactus poses, one run:
+// ground-truth errors 0.3-0.9 % against 1.6-6.8 % through the sphere); the
+// sphere spreads the distortion better between different shapes (cow -
+// horse: summed medians 9.9 against 13.6 direct).
 //
 // Genus 1 and higher: a direct map from a consistent partition (thesis 5.4,
 // Schreiner et al. 2004). Corresponding path networks between the feature
@@ -87,7 +89,8 @@ struct SurfacePoint {
 
 // How a pair of genus 0 is mapped: through the common sphere, directly
 // through a consistent partition (as every pair of genus >= 1 is), or both,
-// keeping the map with the lower summed median distortion (A -> B plus B -> A).
+// keeping the less distorted map: the lower summed median distortion (A -> B
+// plus B -> A), or within 5 % of each other clearly fewer folded samples.
 enum class IntersurfaceMethod { automatic, sphere, partition };
 
 // "auto", "sphere", "partition": the names the CLI and Python use.
@@ -109,9 +112,11 @@ struct IntersurfaceOptions {
   // only if the median energy drops (0: not at all). With neither, the
   // result is the plain composition.
   double correspondence_weight = 0.25;
-  // Genus 0: the whole map is computed this many times and the one with the
-  // lowest median symmetric Dirichlet energy (both directions summed) is
-  // kept: the means rank the maps by their few worst sampled triangles.
+  // Genus 0: the whole map is computed this many times and the least
+  // distorted kept (as for `method`: the lowest median symmetric Dirichlet
+  // energy, both directions summed, or clearly fewer folded samples when
+  // medians lie within 5 %): the means rank the maps by their few worst sampled
+  // triangles.
   // Restarts lay out the pair's consistent parameterization in turn in one
   // pass, with carried guides, and with carried guides and B's map aligned
   // to A's (ConsistentOptions::carry_guides, align; the last instead of the
@@ -121,7 +126,7 @@ struct IntersurfaceOptions {
   // (sets/cactus 0 -> 3, 8 features: ground-truth error 2.2-7.9 % over six
   // starts), and the energy ranks the maps nearly like the true error does.
   // Restarts are the sphere's only: the direct map (any genus) is always
-  // traced and optimized from both sides, the lower median kept.
+  // traced and optimized from both sides, the less distorted kept.
   int restarts = 1;
   // Also map every triangle corner of A and of B (IntersurfaceResult::
   // a_corners_to_b, b_corners_to_a), for transferring per-corner values such
@@ -202,9 +207,11 @@ struct IntersurfaceResult {
   bool balanced_patches = false;
   double patch_area_ratio = 1;
   // Genus 0: per restart through the sphere, the final symmetric Dirichlet
-  // energy A -> B plus B -> A: the means, and the medians, which choose the
-  // restart kept (reported also when the direct map is kept instead).
+  // energy A -> B plus B -> A: the means, and the medians and folded samples
+  // (both directions), which choose the restart kept (reported also when the
+  // direct map is kept instead).
   std::vector<double> restart_dirichlet, restart_median_dirichlet;
+  std::vector<int> restart_flipped;
   MapDistortion composition_a_to_b, composition_b_to_a;
   // Wall time per stage: unconstrained maps for added features (genus 0),
   // the consistent partition and its balancing (genus >= 1), the consistent or patch

@@ -329,17 +329,19 @@ double summed_median(const IntersurfaceResult& r) {
 
 // Whether map x of a pair is better than map y: the lower summed median,
 // unless the medians lie within 5 % of each other and one map folds fewer
-// sampled triangles (both directions). Such medians are a tie the energy
-// cannot break (restarts of one sphere map differ by 1-2 %; the truth of
-// sets/faces is more distorted than both maps), while folds show as inverted
-// faces in a morph; on the ground-truth sets the map with fewer folds was the
-// nearer one in every such tie (sets/cactus 2 -> 0, 12 features: 0 folds and
-// 0.7 % off the truth against 207 folds and 1.5 %).
-bool less_distorted(const IntersurfaceResult& x, const IntersurfaceResult& y) {
+// sampled triangles (both directions) by more than 0.5 % of the `samples`
+// (A's triangles plus B's). Such medians are a tie the energy cannot break
+// (restarts of one sphere map differ by 1-2 %; the truth of sets/faces is
+// more distorted than both maps), while folds show as inverted faces in a
+// morph. Fold counts a few apart are noise (on sets/faces and the torus
+// against its stretched copy they picked the farther map as often as not);
+// hundreds apart they are not: sets/cactus 2 -> 0, 12 features, 0 folds and
+// 0.7 % off the truth against 207 folds and 1.5 %.
+bool less_distorted(const IntersurfaceResult& x, const IntersurfaceResult& y, std::size_t samples) {
   const double mx = summed_median(x), my = summed_median(y);
   const int fx = x.distortion_a_to_b.flipped + x.distortion_b_to_a.flipped;
   const int fy = y.distortion_a_to_b.flipped + y.distortion_b_to_a.flipped;
-  if (fx != fy && std::abs(mx - my) <= 0.05 * std::min(mx, my)) return fx < fy;
+  if (std::abs(fx - fy) > 0.005 * double(samples) && std::abs(mx - my) <= 0.05 * std::min(mx, my)) return fx < fy;
   return mx < my;
 }
 
@@ -479,7 +481,7 @@ void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, Intersurf
     } catch (const Error&) {
       mapped = false;
     }
-    const bool better = mapped && less_distorted(moved, result);
+    const bool better = mapped && less_distorted(moved, result, a.triangles.size() + b.triangles.size());
     // Both maps share the partition and features: their times count once.
     IntersurfaceResult& kept = better ? moved : result;
     const double partition_seconds = kept.seconds_partition, feature_seconds = kept.seconds_features;
@@ -666,10 +668,10 @@ void exchange_sides(IntersurfaceResult& r) {
 
 // Of two maps computed side by side, the one to keep, left in `first`: a
 // cancellation is rethrown, a map whose computation failed leaves the other
-// (both failed: first's error rethrown), else the lower summed median wins,
-// the other's stage times added.
+// (both failed: first's error rethrown), else the less distorted wins, the
+// other's stage times added.
 void keep_less_distorted(IntersurfaceResult& first, const std::exception_ptr& first_error,
-                         IntersurfaceResult& second, const std::exception_ptr& second_error) {
+                         IntersurfaceResult& second, const std::exception_ptr& second_error, std::size_t samples) {
   const bool first_failed = failed_with_error(first_error), second_failed = failed_with_error(second_error);
   if (first_failed && second_failed) std::rethrow_exception(first_error);
   if (second_failed) return;
@@ -677,13 +679,13 @@ void keep_less_distorted(IntersurfaceResult& first, const std::exception_ptr& fi
     first = std::move(second);
     return;
   }
-  const bool second_wins = less_distorted(second, first);
+  const bool second_wins = less_distorted(second, first, samples);
   add_stage_seconds(second_wins ? second : first, second_wins ? first : second);
   if (second_wins) first = std::move(second);
 }
 
 // The direct map through a partition, traced and optimized from A's side and
-// from B's side at once, the lower summed median kept: the partition is
+// from B's side at once, the less distorted kept: the partition is
 // traced on A first and A's embedding moves against B's, so the two differ
 // (sets/cactus 2 -> 0, 10 features: 1.1 % off the truth one way, 0.6 % the
 // other), and the map kept does not depend on which mesh is called A.
@@ -695,11 +697,11 @@ void map_directly(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResu
       progress, 0.5, [&](const ProgressCallback& part) { map_through_patches(a, b, result, options, part); },
       [&](const ProgressCallback& part) { map_through_patches(b, a, backward, options, part); });
   if (!backward_error) exchange_sides(backward);
-  keep_less_distorted(result, forward_error, backward, backward_error);
+  keep_less_distorted(result, forward_error, backward, backward_error, a.triangles.size() + b.triangles.size());
 }
 
-// Genus 0 through the sphere: options.restarts maps, the one with the lowest
-// summed median kept. The optimization ends in a different local minimum from
+// Genus 0 through the sphere: options.restarts maps, the least distorted
+// kept. The optimization ends in a different local minimum from
 // each start; restarts cycle through three layouts of the pair's consistent
 // parameterization, the seed advancing after each cycle; each starts some
 // pairs in a better basin and others in a worse one.
@@ -708,6 +710,7 @@ void map_through_sphere_restarts(const TriangleMesh& a, const TriangleMesh& b, c
                                  const ProgressCallback& progress) {
   constexpr PairLayout kLayouts[] = {PairLayout::single_pass, PairLayout::carried_guides, PairLayout::aligned};
   std::vector<double> energies, medians;
+  std::vector<int> folds;
   IntersurfaceResult best;
   for (int r = 0, restarts = options.restarts; r < restarts; ++r) {
     IntersurfaceOptions attempt = options;
@@ -717,11 +720,13 @@ void map_through_sphere_restarts(const TriangleMesh& a, const TriangleMesh& b, c
                             slice(progress, double(r) / restarts, (r + 1.0) / restarts));
     energies.push_back(tried.distortion_a_to_b.symmetric_dirichlet + tried.distortion_b_to_a.symmetric_dirichlet);
     medians.push_back(summed_median(tried));
-    if (r == 0 || less_distorted(tried, best)) best = std::move(tried);
+    folds.push_back(tried.distortion_a_to_b.flipped + tried.distortion_b_to_a.flipped);
+    if (r == 0 || less_distorted(tried, best, a.triangles.size() + b.triangles.size())) best = std::move(tried);
   }
   result = std::move(best);
   result.restart_dirichlet = std::move(energies);
   result.restart_median_dirichlet = std::move(medians);
+  result.restart_flipped = std::move(folds);
 }
 
 }  // namespace
@@ -896,7 +901,8 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
     direct.partition_median_dirichlet = result.partition_median_dirichlet;
     direct.restart_dirichlet = result.restart_dirichlet;
     direct.restart_median_dirichlet = result.restart_median_dirichlet;
-    keep_less_distorted(result, sphere_error, direct, direct_error);
+    direct.restart_flipped = result.restart_flipped;
+    keep_less_distorted(result, sphere_error, direct, direct_error, a.triangles.size() + b.triangles.size());
   }
   if (progress && !progress(1, "done")) throw Cancelled();
   result.seconds = seconds_since(start);
