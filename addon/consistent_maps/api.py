@@ -207,8 +207,9 @@ def _run_pair(tasks, names, **options):
                                   str(e))) from e
     # The median says how distorted most of the surface is; a few near-degenerate triangles rule the mean.
     stats = [{"genus": r["genus"], "method": r["method"], "symmetric_dirichlet": float(d),
-              "median_symmetric_dirichlet": float(m), "seconds": r["seconds"], "bijective": True}
-             for d, m in zip(r["symmetric_dirichlet"], r["median_symmetric_dirichlet"])]
+              "median_symmetric_dirichlet": float(m), "folded_samples": int(f), "seconds": r["seconds"],
+              "bijective": True}
+             for d, m, f in zip(r["symmetric_dirichlet"], r["median_symmetric_dirichlet"], r["flipped"])]
     pair_maps = []
     for task, (this, other) in zip(tasks, ("ab", "ba")):
         loops = meshdata.loop_corners(task.arrays.corners)  # native corner 3 t + k is loop corners[t, k]

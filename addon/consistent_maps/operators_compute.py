@@ -24,8 +24,10 @@ def _summary(stats):
         median = ", ".join(f"{s['median_symmetric_dirichlet']:.1f}" for s in stats.values())
         mean = ", ".join(f"{s['symmetric_dirichlet']:.1f}" for s in stats.values())
         way = "directly" if first.get("method") == "partition" else "through the sphere"
+        # Folded samples: triangles that would show inverted at the end of a morph.
+        folds = ", ".join(str(s.get("folded_samples", 0)) for s in stats.values())
         return (f"Mapped 2 objects of genus {first['genus']} onto each other {way} in {first['seconds']:.1f} s "
-                f"(symmetric Dirichlet median {median}, mean {mean}; best 4)")
+                f"(symmetric Dirichlet median {median}, mean {mean}; best 4; folded triangles {folds})")
     worst = min(s["efficiency"] for s in stats.values())
     seconds = sum(s["seconds"] for s in stats.values())
     return f"Mapped {len(stats)} object(s) onto the sphere in {seconds:.1f} s (lowest efficiency {worst:.3f})"
