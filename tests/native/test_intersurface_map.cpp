@@ -32,6 +32,30 @@ double truth_error(const std::vector<Vec3>& mapped, const TriangleMesh& truth) {
   return sum / (truth.vertices.size() * diagonal(truth));
 }
 
+// Pose `from` of sets/cactus (A) mapped onto pose `to` (B) by the automatic
+// method, with `count` farthest points of pose 0 as features (vertex i on
+// both), and the map's mean distance from the truth each way.
+struct CactusMap {
+  TriangleMesh a, b;
+  std::vector<FeaturePair> features;
+  IntersurfaceResult map;
+  double forward = 0, backward = 0;  // a_on_b against B, b_on_a against A
+};
+
+CactusMap map_cactus_poses(int from, int to, int count) {
+  const auto pose = [](int k) { return read_mesh(shared_mesh("sets/cactus/cactus" + std::to_string(k) + ".ply")); };
+  CactusMap m{pose(from), pose(to), {}, {}};
+  for (int v : test::farthest_points(pose(0), count)) m.features.push_back({v, v});
+  m.map = intersurface_map(m.a, m.b, m.features);
+  m.forward = truth_error(m.map.a_on_b, m.b), m.backward = truth_error(m.map.b_on_a, m.a);
+  std::printf("cactus %d -> %d, %d features: %s, %.2f %% / %.2f %%, flipped %d / %d, summed medians %.3f "
+              "(sphere %.3f)\n",
+              from, to, count, method_name(m.map.method), 100 * m.forward, 100 * m.backward,
+              m.map.distortion_a_to_b.flipped, m.map.distortion_b_to_a.flipped, m.map.partition_median_dirichlet,
+              m.map.sphere_median_dirichlet);
+  return m;
+}
+
 // Measured 1.6 % (effort 0; 2.0 % for the plain composition); a map ignoring the landmarks is off by 30 %.
 constexpr double kLion2CatTolerance = 0.03;
 
@@ -213,21 +237,15 @@ TEST(IntersurfaceMap, CactusRefitsBothMapsWhenTheMedianDrops) {
 // samples, summed medians 8.24 against 8.49 through the sphere, whose map is
 // 2.4 % off): the automatic method keeps it.
 TEST(IntersurfaceMap, CactusPosesMapDirectlyWithinOnePercent) {
-  const TriangleMesh a = read_mesh(shared_mesh("sets/cactus/cactus0.ply"));
-  const TriangleMesh b = read_mesh(shared_mesh("sets/cactus/cactus1.ply"));
-  std::vector<FeaturePair> features;
-  for (int v : test::farthest_points(a, 8)) features.push_back({v, v});
-  const IntersurfaceResult r = intersurface_map(a, b, features);
-  const double forward = truth_error(r.a_on_b, b), backward = truth_error(r.b_on_a, a);
-  std::printf("cactus 0 -> 1 direct: %.2f %% / %.2f %%, flipped %d / %d, summed medians %.3f (sphere %.3f)\n",
-              100 * forward, 100 * backward, r.distortion_a_to_b.flipped, r.distortion_b_to_a.flipped,
-              r.partition_median_dirichlet, r.sphere_median_dirichlet);
+  const CactusMap m = map_cactus_poses(0, 1, 8);
+  const TriangleMesh &a = m.a, &b = m.b;
+  const IntersurfaceResult& r = m.map;
   EXPECT_EQ(r.method, IntersurfaceMethod::partition);
   EXPECT_LT(r.partition_median_dirichlet, r.sphere_median_dirichlet);
   ASSERT_EQ(r.restart_median_dirichlet.size(), 1u);  // the sphere's, reported though not kept
   EXPECT_DOUBLE_EQ(r.restart_median_dirichlet[0], r.sphere_median_dirichlet);
-  EXPECT_LT(forward, 0.012);
-  EXPECT_LT(backward, 0.012);
+  EXPECT_LT(m.forward, 0.012);
+  EXPECT_LT(m.backward, 0.012);
   EXPECT_LE(r.distortion_a_to_b.flipped, 3);
   EXPECT_LE(r.distortion_b_to_a.flipped, 3);
   EXPECT_GT(r.base_triangles, 0);
@@ -241,7 +259,7 @@ TEST(IntersurfaceMap, CactusPosesMapDirectlyWithinOnePercent) {
   IntersurfaceOptions options;
   options.method = IntersurfaceMethod::partition;
   std::vector<FeaturePair> swapped;
-  for (const FeaturePair& f : features) swapped.push_back({f.b, f.a});
+  for (const FeaturePair& f : m.features) swapped.push_back({f.b, f.a});
   const IntersurfaceResult reversed = intersurface_map(b, a, swapped, options);
   EXPECT_DOUBLE_EQ(reversed.partition_median_dirichlet, r.partition_median_dirichlet);
   double largest_difference = 0;
@@ -261,22 +279,15 @@ TEST(IntersurfaceMap, CactusPosesMapDirectlyWithinOnePercent) {
 // folds none and lies 0.7 % off. Medians that close are a tie, and clearly
 // fewer folds break it.
 TEST(IntersurfaceMap, MediansWithinFivePercentGoToTheMapWithFewerFolds) {
-  const TriangleMesh a = read_mesh(shared_mesh("sets/cactus/cactus2.ply"));
-  const TriangleMesh b = read_mesh(shared_mesh("sets/cactus/cactus0.ply"));
-  std::vector<FeaturePair> features;
-  for (int v : test::farthest_points(b, 12)) features.push_back({v, v});
-  const IntersurfaceResult r = intersurface_map(a, b, features);
-  const double forward = truth_error(r.a_on_b, b), backward = truth_error(r.b_on_a, a);
-  std::printf("cactus 2 -> 0, 12 features: %s, %.2f %% / %.2f %%, flipped %d / %d, summed medians %.3f (sphere %.3f)\n",
-              method_name(r.method), 100 * forward, 100 * backward, r.distortion_a_to_b.flipped,
-              r.distortion_b_to_a.flipped, r.partition_median_dirichlet, r.sphere_median_dirichlet);
+  const CactusMap m = map_cactus_poses(2, 0, 12);
+  const IntersurfaceResult& r = m.map;
   EXPECT_EQ(r.method, IntersurfaceMethod::partition);
   EXPECT_GT(r.partition_median_dirichlet, r.sphere_median_dirichlet);  // the tie the folds decide
   EXPECT_LT(r.partition_median_dirichlet, 1.05 * r.sphere_median_dirichlet);
-  EXPECT_LT(forward, 0.01);
-  EXPECT_LT(backward, 0.01);
+  EXPECT_LT(m.forward, 0.01);
+  EXPECT_LT(m.backward, 0.01);
   EXPECT_LE(r.distortion_a_to_b.flipped + r.distortion_b_to_a.flipped, 3);
-  expect_exact_features(r, a, b);
+  expect_exact_features(r, m.a, m.b);
 }
 
 // The direct map needs a path to grow from: with no pair at all it adds two
