@@ -32,11 +32,11 @@
 // both maps are computed, side by side on two threads, and the less
 // distorted one is kept: the lower summed median, except that medians within
 // 5 % of each other are a tie, broken by fewer folded samples when the counts
-// differ by more than 0.5 % of the triangles. The direct
-// map follows the surfaces where they are alike (sets/cactus poses, one run:
-// ground-truth errors 0.3-0.9 % against 1.6-6.8 % through the sphere); the
-// sphere spreads the distortion better between different shapes (cow -
-// horse: summed medians 9.9 against 13.6 direct).
+// differ by more than 0.5 % of the triangles. The direct map follows the
+// surfaces where they are alike (sets/cactus poses, one run: ground-truth
+// errors 0.3-0.9 % against 1.6-6.8 % through the sphere); the sphere spreads
+// the distortion better between different shapes (cow - horse: summed
+// medians 9.9 against 13.6 direct).
 //
 // Genus 1 and higher: a direct map from a consistent partition (thesis 5.4,
 // Schreiner et al. 2004). Corresponding path networks between the feature
@@ -115,8 +115,8 @@ struct IntersurfaceOptions {
   // Genus 0: the whole map is computed this many times and the least
   // distorted kept (as for `method`: the lowest median symmetric Dirichlet
   // energy, both directions summed, or clearly fewer folded samples when
-  // medians lie within 5 %): the means rank the maps by their few worst sampled
-  // triangles.
+  // medians lie within 5 %): the means rank the maps by their few worst
+  // sampled triangles.
   // Restarts lay out the pair's consistent parameterization in turn in one
   // pass, with carried guides, and with carried guides and B's map aligned
   // to A's (ConsistentOptions::carry_guides, align; the last instead of the

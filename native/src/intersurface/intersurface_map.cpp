@@ -327,6 +327,9 @@ double summed_median(const IntersurfaceResult& r) {
   return r.distortion_a_to_b.median_symmetric_dirichlet + r.distortion_b_to_a.median_symmetric_dirichlet;
 }
 
+// A -> B plus B -> A folded samples.
+int summed_folds(const IntersurfaceResult& r) { return r.distortion_a_to_b.flipped + r.distortion_b_to_a.flipped; }
+
 // Whether map x of a pair is better than map y: the lower summed median,
 // unless the medians lie within 5 % of each other and one map folds fewer
 // sampled triangles (both directions) by more than 0.5 % of the `samples`
@@ -339,8 +342,7 @@ double summed_median(const IntersurfaceResult& r) {
 // 0.7 % off the truth against 207 folds and 1.5 %.
 bool less_distorted(const IntersurfaceResult& x, const IntersurfaceResult& y, std::size_t samples) {
   const double mx = summed_median(x), my = summed_median(y);
-  const int fx = x.distortion_a_to_b.flipped + x.distortion_b_to_a.flipped;
-  const int fy = y.distortion_a_to_b.flipped + y.distortion_b_to_a.flipped;
+  const int fx = summed_folds(x), fy = summed_folds(y);
   if (std::abs(fx - fy) > 0.005 * double(samples) && std::abs(mx - my) <= 0.05 * std::min(mx, my)) return fx < fy;
   return mx < my;
 }
@@ -720,7 +722,7 @@ void map_through_sphere_restarts(const TriangleMesh& a, const TriangleMesh& b, c
                             slice(progress, double(r) / restarts, (r + 1.0) / restarts));
     energies.push_back(tried.distortion_a_to_b.symmetric_dirichlet + tried.distortion_b_to_a.symmetric_dirichlet);
     medians.push_back(summed_median(tried));
-    folds.push_back(tried.distortion_a_to_b.flipped + tried.distortion_b_to_a.flipped);
+    folds.push_back(summed_folds(tried));
     if (r == 0 || less_distorted(tried, best, a.triangles.size() + b.triangles.size())) best = std::move(tried);
   }
   result = std::move(best);
