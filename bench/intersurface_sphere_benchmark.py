@@ -51,7 +51,7 @@ def main():
     lines = [f"Measured {machine()} (machine shared with other work), `cmaps intersurface A B --features FILE -o DIR "
              "--json [--restarts K]`, effort 1, default `--optimize 2`. Seconds: wall time of the whole command "
              "(parameterize / optimize, summed over restarts and both maps). `--method auto`: the map through the common "
-             "sphere (restarts) and the direct map through a consistent partition, the less distorted kept (lower summed median; within 5 %: fewer flipped samples, by over 0.5 % of the triangles). Symmetric Dirichlet by vertex sampling (each source "
+             "sphere (restarts) and the direct map through a consistent partition, the less distorted kept (lower summed median; within 5 %: fewer flipped samples, by over 0.5 % of the triangles, else the direct map). Symmetric Dirichlet by vertex sampling (each source "
              "triangle onto the triangle its corners' images form, target scaled to the source's area; optimum 4): "
              "area-weighted mean and the median triangle's (restarts keep the least distorted likewise); "
              "\"plain\": the composition before refitting and optimization (of the kept restart; for the direct map its final "

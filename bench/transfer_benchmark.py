@@ -261,8 +261,8 @@ def main():
         "`align=True` (step 7, the add-on's Align to First; sets/faces: no change, meshes with holes keep "
         "their maps); `pairwise` = `cmaps "
         "transfer SOURCE TARGET --features --positions` (the inter-surface map of target onto source, default "
-        "`--optimize 2` and `--method auto`: through the sphere and directly through a partition, the lower "
-        "median kept, named after the seconds), the morph from the same map through `intersurface_map`; "
+        "`--optimize 2` and `--method auto`: through the sphere and directly through a partition, the less "
+        "distorted kept as the genus-0 inter-surface section says, named after the seconds), the morph from the same map through `intersurface_map`; "
         "`pairwise, plain` = `--optimize 0`. " + " ".join(sorted(notes)) + " Target (issue 7): every error under 1 %.",
         "",
         "| set | pair | features | map | seconds | morph % | transfer % | colours % | UVs % | target met |",

@@ -131,9 +131,11 @@ options:
                      sphere_median_dirichlet, partition_median_dirichlet),
                      or, for medians within 5 % of each other, the fewer
                      folded samples (JSON: flipped) if the counts differ by
-                     more than 0.5 % of the triangles. The direct map follows
-                     shapes that are alike (poses of one shape); the sphere
-                     spreads the distortion between different shapes. The
+                     more than 0.5 % of the triangles, else the direct map.
+                     The direct map follows shapes that are alike (poses or
+                     expressions of one shape: its paths are shortest on
+                     both); the sphere spreads the distortion between
+                     different shapes. The
                      direct map (any genus) is traced and optimized from A's
                      side and from B's, the less distorted kept.
   --restarts K       intersurface, transfer: through the sphere (genus 0),

@@ -6,7 +6,10 @@
 #include <algorithm>
 #include <fstream>
 #include <limits>
+#include <map>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "consistent_maps/mesh.h"
 
@@ -55,6 +58,51 @@ inline std::vector<int> farthest_points(const TriangleMesh& mesh, int count) {
     for (size_t v = 0; v < distance.size(); ++v)
       distance[v] = std::min(distance[v], (mesh.vertices[v] - mesh.vertices[chosen.back()]).squaredNorm());
     chosen.push_back(static_cast<int>(std::max_element(distance.begin(), distance.end()) - distance.begin()));
+  }
+  return chosen;
+}
+
+// Boundary loops in order (each starting at its smallest vertex).
+inline std::vector<std::vector<int>> loops_of(const TriangleMesh& mesh) {
+  std::map<std::pair<int, int>, int> half;
+  for (const Triangle& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) half[{t[k], t[(k + 1) % 3]}] = 1;
+  std::map<int, int> next;
+  for (const auto& [e, one] : half)
+    if (!half.count({e.second, e.first})) next[e.second] = e.first;
+  std::vector<std::vector<int>> loops;
+  std::set<int> seen;
+  for (const auto& [s, unused] : next) {
+    if (seen.count(s)) continue;
+    loops.emplace_back();
+    for (int v = s; !seen.count(v); v = next.at(v)) {
+      seen.insert(v);
+      loops.back().push_back(v);
+    }
+  }
+  return loops;
+}
+
+// `per_hole` features evenly along every loop, then `interior` more far from
+// them and from each other.
+inline std::vector<int> hole_and_interior_features(const TriangleMesh& mesh, int per_hole, int interior) {
+  std::vector<int> chosen;
+  std::set<int> boundary;
+  for (const auto& loop : loops_of(mesh)) {
+    for (int j = 0; j < per_hole; ++j) chosen.push_back(loop[j * loop.size() / per_hole]);
+    boundary.insert(loop.begin(), loop.end());
+  }
+  std::vector<double> distance(mesh.vertices.size(), std::numeric_limits<double>::infinity());
+  for (int c : chosen)
+    for (size_t v = 0; v < distance.size(); ++v)
+      distance[v] = std::min(distance[v], (mesh.vertices[v] - mesh.vertices[c]).squaredNorm());
+  for (int i = 0; i < interior; ++i) {
+    int best = -1;
+    for (size_t v = 0; v < distance.size(); ++v)
+      if (!boundary.count(int(v)) && (best < 0 || distance[v] > distance[best])) best = int(v);
+    chosen.push_back(best);
+    for (size_t v = 0; v < distance.size(); ++v)
+      distance[v] = std::min(distance[v], (mesh.vertices[v] - mesh.vertices[best]).squaredNorm());
   }
   return chosen;
 }

@@ -32,11 +32,12 @@
 // both maps are computed, side by side on two threads, and the less
 // distorted one is kept: the lower summed median, except that medians within
 // 5 % of each other are a tie, broken by fewer folded samples when the counts
-// differ by more than 0.5 % of the triangles. The direct map follows the
-// surfaces where they are alike (sets/cactus poses, one run: ground-truth
-// errors 0.3-0.9 % against 1.6-6.8 % through the sphere); the sphere spreads
-// the distortion better between different shapes (cow - horse: summed
-// medians 9.9 against 13.6 direct).
+// differ by more than 0.5 % of the triangles, else won by the direct map. The
+// direct map follows the surfaces where they are alike, its paths being
+// shortest on both (sets/cactus poses: ground-truth errors 0.3-0.9 % against
+// 0.9-17 % through the sphere; sets/faces' expressions: nearer the truth in
+// tied pairs); the sphere spreads the distortion better between different
+// shapes (cow - horse: summed medians 9.9 against 13.6 direct).
 //
 // Genus 1 and higher: a direct map from a consistent partition (thesis 5.4,
 // Schreiner et al. 2004). Corresponding path networks between the feature
@@ -90,7 +91,8 @@ struct SurfacePoint {
 // How a pair of genus 0 is mapped: through the common sphere, directly
 // through a consistent partition (as every pair of genus >= 1 is), or both,
 // keeping the less distorted map: the lower summed median distortion (A -> B
-// plus B -> A), or within 5 % of each other clearly fewer folded samples.
+// plus B -> A), or within 5 % of each other clearly fewer folded samples,
+// else the direct map.
 enum class IntersurfaceMethod { automatic, sphere, partition };
 
 // "auto", "sphere", "partition": the names the CLI and Python use.
