@@ -318,7 +318,9 @@ class Partitioner {
     double length = 0;  // summed, size-normalized
   };
 
-  bool trace(int i, int j, const Attach& at_i, const Attach& at_j, Traced& traced) const {
+  // With a `bound`, gives up (false) once the pair cannot be shorter: A's
+  // traced length plus B's straight distance reaches it.
+  bool trace(int i, int j, const Attach& at_i, const Attach& at_j, Traced& traced, double bound = kInf) const {
     std::vector<int>* nodes = traced.nodes;
     int* vertices = traced.vertices;
     End used_i, used_j;  // the sectors on A, for kMatch
@@ -354,6 +356,11 @@ class Partitioner {
       }
       if (nodes[s].empty()) return false;
       traced.length += path_length(side.mesh, nodes[s], vertices[s]) / scale_[s];
+      if (s == 0) {
+        const Side& b = sides_[1];
+        if (traced.length + (b.mesh.position(b.feature[i]) - b.mesh.position(b.feature[j])).norm() / scale_[1] >= bound)
+          return false;
+      }
     }
     return true;
   }
@@ -812,14 +819,17 @@ class Partitioner {
         candidates.push_back({cost(walk.corners[i].feature, walk.corners[j].feature), {i, j}});
       }
     std::sort(candidates.begin(), candidates.end(), [](const auto& p, const auto& q) { return p.first < q.first; });
-    // Of the nearest few, the shortest traced pair.
+    // Of the nearest few, the shortest traced pair. A pair's cost (straight
+    // lines) bounds its traced length from below, so pairs that cannot beat
+    // the best so far are not traced.
     Traced best;
     std::array<int, 2> chosen{-1, -1};
     for (int n = 0; n < int(candidates.size()) && n < kDiagonalAttempts; ++n) {
+      if (chosen[0] >= 0 && candidates[n].first >= best.length) break;
       const auto [i, j] = candidates[n].second;
       Traced traced;
       if (trace(walk.corners[i].feature, walk.corners[j].feature, {Attach::kFixed, walk.after[i]},
-                {Attach::kFixed, walk.after[j]}, traced) &&
+                {Attach::kFixed, walk.after[j]}, traced, chosen[0] >= 0 ? best.length : kInf) &&
           (chosen[0] < 0 || traced.length < best.length)) {
         best = std::move(traced);
         chosen = {i, j};

@@ -34,6 +34,12 @@ EditableMesh::EditableMesh(const TriangleMesh& mesh)
     }
   for (const auto& faces : edge_faces_)
     if (faces[1] < 0) throw TopologyError("mesh has a boundary edge");
+  face_edges_.resize(triangles_.size());
+  for (int f = 0; f < static_cast<int>(triangles_.size()); ++f) index_face_edges(f);
+}
+
+void EditableMesh::index_face_edges(int f) {
+  for (int k = 0; k < 3; ++k) face_edges_[f][k] = edge(triangles_[f][k], triangles_[f][(k + 1) % 3]);
 }
 
 std::uint64_t EditableMesh::key(int a, int b) {
@@ -121,6 +127,8 @@ int EditableMesh::split_edge(int e, double at) {
   // The old edge's id stays unused from now on.
   edge_vertices_[e] = {-1, -1};
   edge_faces_[e] = {-1, -1};
+  face_edges_.resize(triangles_.size());
+  for (int i = 0; i < 2; ++i) index_face_edges(faces[i]), index_face_edges(new_faces[i]);
   return m;
 }
 

@@ -31,6 +31,8 @@ class EditableMesh {
   const std::array<int, 2>& edge_vertices(int e) const { return edge_vertices_[e]; }
   const std::array<int, 2>& edge_faces(int e) const { return edge_faces_[e]; }
   int edge(int a, int b) const;  // -1 when a and b are not adjacent
+  // Triangle f's edges: k from its corner k to corner k + 1 (no lookup, for searches).
+  const std::array<int, 3>& face_edges(int f) const { return face_edges_[f]; }
   std::vector<int> ring(int v) const;  // neighbours, counter-clockwise
   const InputPoint& surface_point(int v) const { return origins_[v]; }
   // The input triangle a triangle lies in (splits never cross input edges).
@@ -44,6 +46,7 @@ class EditableMesh {
   static std::uint64_t key(int a, int b);
   void set_edge(int a, int b, int f0, int f1);
   void replace_edge_face(int a, int b, int old_face, int new_face);
+  void index_face_edges(int f);
 
   int input_vertices_;
   std::vector<Vec3> positions_;
@@ -53,6 +56,7 @@ class EditableMesh {
   std::vector<std::vector<int>> vertex_faces_;
   std::unordered_map<std::uint64_t, int> edge_index_;
   std::vector<std::array<int, 2>> edge_vertices_, edge_faces_;
+  std::vector<std::array<int, 3>> face_edges_;
 };
 
 }  // namespace cmaps

@@ -84,7 +84,7 @@ std::vector<int> shortest_path(const EditableMesh& mesh, int source, int target,
         const int b = t[(k + 1) % 3], c = t[(k + 2) % 3];
         relax(u, b);
         relax(u, c);
-        if (rules.midpoints) relax(u, vertices + mesh.edge(b, c));
+        if (rules.midpoints) relax(u, vertices + mesh.face_edges(f)[(k + 1) % 3]);
       }
     } else {
       // A midpoint reaches its edge's ends (once split, the halves are edges;
@@ -96,11 +96,11 @@ std::vector<int> shortest_path(const EditableMesh& mesh, int source, int target,
       relax(u, y);
       for (int f : mesh.edge_faces(e)) {
         const Triangle& t = mesh.triangles()[f];
-        const int c = t[0] != x && t[0] != y ? t[0] : t[1] != x && t[1] != y ? t[1] : t[2];
-        relax(u, c);
-        if (rules.midpoints) {
-          relax(u, vertices + mesh.edge(x, c));
-          relax(u, vertices + mesh.edge(y, c));
+        const int k = t[0] != x && t[0] != y ? 0 : t[1] != x && t[1] != y ? 1 : 2;
+        relax(u, t[k]);
+        if (rules.midpoints) {  // the two edges at the opposite corner c = t[k]
+          relax(u, vertices + mesh.face_edges(f)[k]);
+          relax(u, vertices + mesh.face_edges(f)[(k + 2) % 3]);
         }
       }
     }
