@@ -88,7 +88,9 @@ commands:
            source's faces and vertex order, positions mapped onto the other
            surface). Without --features (or with fewer than 3 pairs) pairs are
            added automatically. The map is optimized for symmetric distortion
-           (--optimize rounds, each moving A's vertices then B's); genus >= 1
+           (--optimize rounds, each moving A's vertices then B's; the
+           direct map's vertices also cross the partition's paths, so
+           these stop being walls); genus >= 1
            maps also go through the partition with its patches' areas
            balanced, kept when less distorted (as for --method; JSON:
            balanced_patches, patch_area_ratio).
@@ -123,7 +125,8 @@ options:
                      input that has every feature)
   --optimize R       rounds of distortion optimization of the inter-surface map
                      (0..100, default 2; 0 = the plain composition of the
-                     two spherical maps, neither refitted to the other)
+                     two spherical maps, neither refitted to the other, and
+                     the direct map as its patches are embedded)
   --method M         intersurface, transfer (genus 0): map through the common
                      sphere, directly through a consistent partition as for
                      genus >= 1, or auto (default): both, keeping the less

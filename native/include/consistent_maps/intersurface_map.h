@@ -53,8 +53,13 @@
 // of the other, which no map inside the patches undoes; so the map is also
 // computed through a partition whose paths are moved to balance the patches'
 // areas (intersurface/patch_balance.h), and kept if that lowers the median
-// distortion. Continuous and bijective; A's embedding is locally optimized
-// (no progressive-mesh refinement). With zero pairs, one pair is chosen: A's vertex farthest from
+// distortion. A's embedding is locally optimized inside the patches and
+// along the paths, then across them: its vertices move over the base mesh
+// glued flat around the features, into the neighbouring patch when a move
+// crosses a path (IntersurfaceOptions::cross_sweeps), so the paths where
+// the partition was traced stop being walls (as in Schreiner et al., though
+// on the full meshes, not during a progressive refinement). Continuous and
+// bijective. With zero pairs, one pair is chosen: A's vertex farthest from
 // its centroid and B's vertex nearest it with centroids and areas matched.
 // Holes (thesis 5.4, boundaries): each is closed by a fan around a temporary
 // centre, holes are paired (by pairs on their rims, else by nearest centres
@@ -134,6 +139,11 @@ struct IntersurfaceOptions {
   // a_corners_to_b, b_corners_to_a), for transferring per-corner values such
   // as texture coordinates.
   bool corner_images = false;
+  // The direct map (any genus): after its patch-wise optimization, at most
+  // this many sweeps of moving A's vertices across the partition's paths
+  // (each into the neighbouring patch when a move crosses one), so the
+  // paths where the partition was traced stop being walls; 0: they stay.
+  int cross_sweeps = 20;
   // Genus >= 1: rounds of moving the partition's paths so that corresponding
   // patches take equal shares of their surfaces (intersurface/patch_balance.h);
   // the map through the moved partition is kept only if its summed median

@@ -27,6 +27,7 @@
 #include "intersurface/consistent_partition.h"
 #include "intersurface/patch_balance.h"
 #include "intersurface/patch_map_optimization.h"
+#include "intersurface/cross_patch_optimization.h"
 #include "intersurface/patch_parameterization.h"
 #include "intersurface/path_guide.h"
 #include "intersurface/hole_rims.h"
@@ -375,6 +376,12 @@ void map_partition(ConsistentPartition& partition, const ClosedMesh& closed_a, c
   if (progress && !progress(0.3, "optimizing the map")) throw Cancelled();
   optimize_patch_map(partition.sides[0], uv_a, partition.sides[1], uv_b,
                      options.optimize_rounds > 0 ? options.optimize_sweeps : 0, options.sphere.threads);
+  // Then across the paths (cross_patch_optimization.h).
+  CrossPatchMap across(partition, uv_a, uv_b);
+  if (options.optimize_rounds > 0)
+    across.optimize(options.cross_sweeps, [&](double done) {
+      return !progress || progress(0.3 + 0.4 * done, "optimizing the map across the paths");
+    });
   result.seconds_optimize = seconds_since(stage);
 
   stage = Clock::now();
@@ -394,13 +401,11 @@ void map_partition(ConsistentPartition& partition, const ClosedMesh& closed_a, c
       if (p.triangle >= int(target.triangles.size())) throw Error("internal error: a surface point maps into a hole");
     return points;
   };
-  result.a_to_b = surface_only(convert(map_vertices(side_a, uv_a, side_b, uv_b, cb, threads)), a.vertices.size(), b);
-  result.b_to_a = surface_only(convert(map_vertices(side_b, uv_b, side_a, uv_a, ca, threads)), b.vertices.size(), a);
+  result.a_to_b = surface_only(convert(across.map_a(cb, threads)), a.vertices.size(), b);
+  result.b_to_a = surface_only(convert(across.map_b(ca)), b.vertices.size(), a);
   if (options.corner_images) {
-    result.a_corners_to_b =
-        surface_only(convert(map_corners(side_a, uv_a, side_b, uv_b, ca, cb, threads)), 3 * a.triangles.size(), b);
-    result.b_corners_to_a =
-        surface_only(convert(map_corners(side_b, uv_b, side_a, uv_a, cb, ca, threads)), 3 * b.triangles.size(), a);
+    result.a_corners_to_b = surface_only(convert(across.map_a_corners(ca, cb, threads)), 3 * a.triangles.size(), b);
+    result.b_corners_to_a = surface_only(convert(across.map_b_corners(ca, cb, threads)), 3 * b.triangles.size(), a);
   }
   result.a_on_b = surface_positions(b, result.a_to_b);
   result.b_on_a = surface_positions(a, result.b_to_a);

@@ -1,6 +1,6 @@
 // Point location among one patch's triangles in its canonical triangle: a
 // grid of buckets over the triangles' bounding boxes. Any triangles of a side
-// laid out inside the unit square will do (map_corners: the refined faces of
+// laid out inside the unit square will do (corner_points: the refined faces of
 // one input triangle in a chart of it).
 #pragma once
 #include <array>

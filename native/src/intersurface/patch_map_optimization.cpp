@@ -6,74 +6,15 @@
 #include <memory>
 
 #include "common/parallel_for.h"
+#include "intersurface/chord_energy.h"
+#include "intersurface/descent_step.h"
 #include "intersurface/patch_locator.h"
 
 namespace cmaps {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr int kHalvings = 10;         // line search: step, step / 2, ...
-constexpr double kFlipPenalty = 1e6;  // energy density of an image triangle facing against the surface there
-// A vertex whose ring holds more target vertices than this stays where it is:
-// each trial re-maps all of them (such rings lie where the target is
-// compressed most, e.g. between unrelated feature pairs).
-constexpr int kMaxRemapped = 256;
-
-double surface_area(const PartitionSide& side) {
-  double area = 0;
-  for (const Triangle& t : side.mesh.triangles())
-    area += 0.5 * (side.mesh.position(t[1]) - side.mesh.position(t[0]))
-                      .cross(side.mesh.position(t[2]) - side.mesh.position(t[0]))
-                      .norm();
-  return area;
-}
-
-// A triangle's area and the cotangents of its angles.
-struct Shape {
-  double area = 0;
-  double cot[3] = {0, 0, 0};
-};
-
-Shape shape_of(const PartitionSide& side, int f) {
-  const Triangle& t = side.mesh.triangles()[f];
-  const Vec3 p[3] = {side.mesh.position(t[0]), side.mesh.position(t[1]), side.mesh.position(t[2])};
-  Shape s;
-  s.area = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
-  for (int i = 0; i < 3; ++i) {
-    const Vec3 u = p[(i + 1) % 3] - p[i], v = p[(i + 2) % 3] - p[i];
-    s.cot[i] = u.dot(v) / std::max(u.cross(v).norm(), 1e-300);
-  }
-  return s;
-}
-
-// A point's image on the other mesh (scaled to this mesh's area) and that mesh's normal there.
-struct Image {
-  Vec3 position = Vec3::Zero(), normal = Vec3::Zero();
-};
-
-// Area times symmetric Dirichlet density of the linear map from a triangle
-// onto the chord triangle of its corners' images; inf when degenerate.
-double triangle_energy(const Shape& s, const Image* image[3]) {
-  if (s.area <= 0) return 0;
-  const Vec3 nq = (image[1]->position - image[0]->position).cross(image[2]->position - image[0]->position);
-  const double aq = 0.5 * nq.norm();
-  if (aq <= 1e-14 * s.area) return kInf;
-  if (nq.dot(image[0]->normal + image[1]->normal + image[2]->normal) < 0) return kFlipPenalty * s.area;
-  double dirichlet = 0;
-  for (int i = 0; i < 3; ++i)
-    dirichlet += s.cot[i] * (image[(i + 2) % 3]->position - image[(i + 1) % 3]->position).squaredNorm();
-  dirichlet /= 2 * s.area;
-  return s.area * dirichlet * (1 + (s.area / aq) * (s.area / aq));
-}
-
-// Barycentric coordinates of p in the 2D triangle (a, b, c).
-std::array<double, 3> barycentric(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
-  const Vec2 e = b - a, d = c - a, q = p - a;
-  const double det = e.x() * d.y() - e.y() * d.x();
-  if (std::abs(det) < 1e-300) return {-1, -1, -1};
-  const double s = (q.x() * d.y() - q.y() * d.x()) / det, t = (e.x() * q.y() - e.y() * q.x()) / det;
-  return {1 - s - t, s, t};
-}
+constexpr double kInf = kChordInf;
+constexpr int kHalvings = 10;  // path slides' line search: step, step / 2, ...
 
 // One patch, both directions: the source's triangles mapped onto the target
 // and the target's triangles mapped back, as functions of one free source
@@ -135,11 +76,11 @@ class PatchEnergy {
     return inside <= kMaxRemapped;
   }
 
-  // One descent step of vertex v: normalized gradient (central differences), halving line search.
+  // One descent step of vertex v (descent_step.h).
   bool improve(int v) {
     if (!movable(v)) return false;
     const Vec2 u0 = uv_.at(v);
-    Move current = trial(v, u0);
+    const Move current = trial(v, u0);
     if (!std::isfinite(current.energy)) return false;
     double length = 0;
     int count = 0;
@@ -147,28 +88,10 @@ class PatchEnergy {
       for (int w : source_.mesh.triangles()[f])
         if (w != v) length += (uv_.at(w) - u0).norm(), ++count;
     length /= std::max(count, 1);
-    const double h = 1e-4 * length;
-    Vec2 gradient;
-    for (int axis = 0; axis < 2; ++axis) {
-      Vec2 d = Vec2::Zero();
-      d[axis] = h;
-      const double plus = trial(v, u0 + d).energy, minus = trial(v, u0 - d).energy;
-      if (std::isfinite(plus) && std::isfinite(minus)) gradient[axis] = (plus - minus) / (2 * h);
-      else if (std::isfinite(plus)) gradient[axis] = (plus - current.energy) / h;
-      else if (std::isfinite(minus)) gradient[axis] = (current.energy - minus) / h;
-      else return false;
-    }
-    if (!(gradient.norm() > 0)) return false;
-    const Vec2 direction = -gradient.normalized();
-    double step = 0.5 * length;
-    for (int k = 0; k < kHalvings; ++k, step *= 0.5) {
-      Move move = trial(v, u0 + step * direction);
-      if (move.energy < current.energy) {
-        apply(v, move);
-        return true;
-      }
-    }
-    return false;
+    const auto move = descent_step(u0, length, current, [&](const Vec2& p) { return trial(v, p); });
+    if (!move) return false;
+    apply(v, *move);
+    return true;
   }
 
   // Vertex v at canonical point p: its image, the re-mapped target vertices, the ring's energy.
@@ -208,9 +131,7 @@ class PatchEnergy {
           const double low = std::min({b[0], b[1], b[2]});
           if (low > score) score = low, best = g, weights = b;
         }
-        double sum = 0;
-        for (double& x : weights) sum += (x = std::max(0.0, x));
-        for (double& x : weights) x = sum > 0 ? x / sum : 1.0 / 3;
+        weights = clamped(weights);
         // The image lies in the moved triangle: v's position enters through its weight.
         m.remapped.push_back({w, image_in(source_, best, weights, 1 / scale_)});
         m.hosts.push_back(best);
@@ -242,12 +163,6 @@ class PatchEnergy {
  private:
   // v's triangles in this patch (a vertex on a path has triangles in two).
   const std::vector<int>& ring(int v) const { return ring_.at(v); }
-
-  static Image image_in(const PartitionSide& side, int face, const std::array<double, 3>& w, double scale) {
-    const Triangle& t = side.mesh.triangles()[face];
-    const Vec3 &a = side.mesh.position(t[0]), &b = side.mesh.position(t[1]), &c = side.mesh.position(t[2]);
-    return {scale * (w[0] * a + w[1] * b + w[2] * c), (b - a).cross(c - a).normalized()};
-  }
 
   static Image locate(const PatchLocator& locator, const PartitionSide& side, const Vec2& p, double scale) {
     const auto [face, w] = locator.locate(p);
@@ -363,7 +278,7 @@ MapOptimization optimize_patch_map(const PartitionSide& source, PatchParameteriz
   std::vector<char> on_path(source.mesh.vertex_count(), 0);
   for (const auto& path : source.paths)
     for (int v : path) on_path[v] = 1;
-  const double scale = std::sqrt(surface_area(source) / surface_area(target));
+  const double scale = std::sqrt(side_area(source) / side_area(target));
 
   std::vector<std::unique_ptr<PatchEnergy>> energy(patches);
   std::vector<std::vector<int>> free(patches);

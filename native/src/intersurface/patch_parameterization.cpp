@@ -15,8 +15,6 @@
 namespace cmaps {
 namespace {
 
-const Vec2 kCorner[3] = {Vec2(0, 0), Vec2(1, 0), Vec2(0.5, std::sqrt(3.0) / 2)};
-
 // Splits every non-path edge whose ends both lie on paths, keeping `patch`
 // (per triangle) in step with the new triangles.
 void split_chords(PartitionSide& side) {
@@ -148,7 +146,7 @@ std::unordered_map<int, Vec2> parameterize(const PartitionSide& side, const Base
       at.push_back(at.back() + (side.mesh.position(path[i]) - side.mesh.position(path[i - 1])).norm());
     for (size_t i = 0; i < path.size(); ++i) {
       const double t = at.back() > 0 ? at[i] / at.back() : double(i) / (path.size() - 1);
-      uv[path[i]] = (1 - t) * kCorner[k] + t * kCorner[(k + 1) % 3];
+      uv[path[i]] = (1 - t) * kCanonicalCorner[k] + t * kCanonicalCorner[(k + 1) % 3];
     }
   }
   PatchEmbedding embedding(side, faces, uv);
@@ -173,7 +171,8 @@ std::unordered_map<int, Vec2> parameterize(const PartitionSide& side, const Base
   return uv;
 }
 
-// A point of the refined target (triangle, weights) on its input triangle.
+}  // namespace
+
 InputLocation to_input(const PartitionSide& side, const TriangleMesh& input, int face, const std::array<double, 3>& w) {
   InputLocation p;
   p.triangle = side.mesh.input_triangle(face);
@@ -212,8 +211,6 @@ std::vector<std::vector<int>> faces_by_patch(const PartitionSide& side, int patc
   return faces;
 }
 
-// Canonical points (base triangle, point in its canonical triangle) located
-// in `target`'s patches, on `target_input`'s triangles.
 std::vector<InputLocation> locate_canonical(const PartitionSide& target, const PatchParameterization& target_uv,
                                             const TriangleMesh& target_input,
                                             const std::vector<std::pair<int, Vec2>>& points, int threads) {
@@ -230,7 +227,6 @@ std::vector<InputLocation> locate_canonical(const PartitionSide& target, const P
   return image;
 }
 
-}  // namespace
 
 PatchParameterization parameterize_patches(PartitionSide& side, const ConsistentPartition& partition,
                                            int stretch_rounds) {
@@ -247,22 +243,9 @@ double patch_stretch(const PartitionSide& side, const std::unordered_map<int, Ve
   return stretch_of(side, uv, faces, nullptr);
 }
 
-std::vector<InputLocation> map_vertices(const PartitionSide& source, const PatchParameterization& source_uv,
-                                        const PartitionSide& target, const PatchParameterization& target_uv,
-                                        const TriangleMesh& target_input, int threads) {
+void snap_features(const PartitionSide& source, const PartitionSide& target, const TriangleMesh& target_input,
+                   std::vector<InputLocation>& image) {
   const int n = source.mesh.input_vertex_count();
-  std::vector<std::pair<int, Vec2>> points(n);
-  for (int v = 0; v < n; ++v) {
-    // A rim vertex maps through the surface's patch beside it, not the hole's fan.
-    const std::vector<int>& faces = source.mesh.faces_of(v);
-    const auto surface = std::find_if(faces.begin(), faces.end(),
-                                      [&](int f) { return source.mesh.input_triangle(f) < source.input_triangles; });
-    const int t = source.patch[surface != faces.end() ? *surface : faces.front()];
-    points[v] = {t, source_uv.uv[t].at(v)};
-  }
-  std::vector<InputLocation> image = locate_canonical(target, target_uv, target_input, points, threads);
-
-  // Features exactly onto their partners.
   std::vector<int> incident(target_input.vertices.size(), -1);
   for (int t = 0; t < int(target_input.triangles.size()); ++t)  // surface triangles before fan triangles
     for (int v : target_input.triangles[t])
@@ -274,17 +257,13 @@ std::vector<InputLocation> map_vertices(const PartitionSide& source, const Patch
     p.triangle = incident[to];
     for (int j = 0; j < 3; ++j) p.barycentric[j] = target_input.triangles[p.triangle][j] == to ? 1 : 0;
   }
-  return image;
 }
 
-std::vector<InputLocation> map_corners(const PartitionSide& source, const PatchParameterization& source_uv,
-                                       const PartitionSide& target, const PatchParameterization& target_uv,
-                                       const TriangleMesh& source_input, const TriangleMesh& target_input,
-                                       int threads) {
+std::vector<RefinedPoint> corner_points(const PartitionSide& source, const TriangleMesh& source_input, int threads) {
   const int triangles = int(source_input.triangles.size());
   std::vector<std::vector<int>> refined(triangles);  // per input triangle: the refined faces inside it
   for (int f = 0; f < int(source.mesh.triangles().size()); ++f) refined[source.mesh.input_triangle(f)].push_back(f);
-  std::vector<std::pair<int, Vec2>> points(3 * std::size_t(triangles));
+  std::vector<RefinedPoint> points(3 * std::size_t(triangles));
   parallel_for(triangles, threads, [&](int t) {
     // t's refined faces in an affine chart of t: a point's weights on t's corners 1 and 2.
     const Triangle& corners = source_input.triangles[t];
@@ -302,13 +281,18 @@ std::vector<InputLocation> map_corners(const PartitionSide& source, const PatchP
       Vec2 p = Vec2::Constant(kCornerNudge);
       if (k > 0) p[k - 1] = 1 - 2 * kCornerNudge;
       const auto [face, w] = locator.locate(p);
-      const int patch = source.patch[face];
-      Vec2 uv = Vec2::Zero();
-      for (int j = 0; j < 3; ++j) uv += w[j] * source_uv.uv[patch].at(source.mesh.triangles()[face][j]);
-      points[3 * std::size_t(t) + k] = {patch, uv};
+      points[3 * std::size_t(t) + k] = {face, w};
     }
   });
-  return locate_canonical(target, target_uv, target_input, points, threads);
+  return points;
+}
+
+std::pair<int, Vec2> canonical_point(const PartitionSide& side, const PatchParameterization& uv,
+                                     const RefinedPoint& point) {
+  const int patch = side.patch[point.face];
+  Vec2 at = Vec2::Zero();
+  for (int j = 0; j < 3; ++j) at += point.weights[j] * uv.uv[patch].at(side.mesh.triangles()[point.face][j]);
+  return {patch, at};
 }
 
 }  // namespace cmaps

@@ -19,6 +19,10 @@ namespace cmaps {
 
 using Vec2 = Eigen::Vector2d;
 
+// The canonical triangle: base triangle corner k sits at kCanonicalCorner[k],
+// base edge k runs from corner k to corner k + 1.
+inline const Vec2 kCanonicalCorner[3] = {Vec2(0, 0), Vec2(1, 0), Vec2(0.5, 0.86602540378443864676)};
+
 struct PatchParameterization {
   std::vector<std::unordered_map<int, Vec2>> uv;  // per base triangle: mesh vertex -> canonical point
 };
@@ -45,20 +49,37 @@ struct InputLocation {
   std::array<double, 3> barycentric{0, 0, 0};
 };
 
-// Per input vertex of `source`: the point of `target` with the same canonical
-// coordinates, on `target_input`'s triangles. Features that are input
-// vertices on both sides map exactly onto their partners.
-std::vector<InputLocation> map_vertices(const PartitionSide& source, const PatchParameterization& source_uv,
-                                        const PartitionSide& target, const PatchParameterization& target_uv,
-                                        const TriangleMesh& target_input, int threads);
+// Features of `source` that are input vertices on both sides: their images
+// (per input vertex of `source`) set exactly onto their partners.
+void snap_features(const PartitionSide& source, const PartitionSide& target, const TriangleMesh& target_input,
+                   std::vector<InputLocation>& image);
+
+// Per base triangle: the side's triangles in it.
+std::vector<std::vector<int>> faces_by_patch(const PartitionSide& side, int patches);
+
+// A point of a side's refined mesh (triangle, weights) on its input triangle.
+InputLocation to_input(const PartitionSide& side, const TriangleMesh& input, int face, const std::array<double, 3>& w);
+
+// Canonical points (base triangle, point in its canonical triangle) located
+// in `target`'s patches, on `target_input`'s triangles.
+std::vector<InputLocation> locate_canonical(const PartitionSide& target, const PatchParameterization& target_uv,
+                                            const TriangleMesh& target_input,
+                                            const std::vector<std::pair<int, Vec2>>& points, int threads);
+
+// A point of a side's refined mesh: triangle and barycentric weights.
+struct RefinedPoint {
+  int face = -1;
+  std::array<double, 3> weights{0, 0, 0};
+};
 
 // Per corner k of input triangle t of `source_input` (entry 3 t + k): the
-// image on `target_input` of the point of t next to that corner (input
-// barycentric 1 - 2 kCornerNudge there, kCornerNudge at the other two), for
-// per-corner values. That point is no feature: it is mapped as it lands.
-std::vector<InputLocation> map_corners(const PartitionSide& source, const PatchParameterization& source_uv,
-                                       const PartitionSide& target, const PatchParameterization& target_uv,
-                                       const TriangleMesh& source_input, const TriangleMesh& target_input,
-                                       int threads);
+// point of t next to that corner (input barycentric 1 - 2 kCornerNudge
+// there, kCornerNudge at the other two) in the refined mesh, for per-corner
+// values. That point is no feature: it is mapped as it lands.
+std::vector<RefinedPoint> corner_points(const PartitionSide& source, const TriangleMesh& source_input, int threads);
+
+// A refined point's base triangle and canonical point.
+std::pair<int, Vec2> canonical_point(const PartitionSide& side, const PatchParameterization& uv,
+                                     const RefinedPoint& point);
 
 }  // namespace cmaps

@@ -1,0 +1,102 @@
+// The energy the patch-wise map optimizers lower (patch_map_optimization.h,
+// cross_patch_optimization.h): each triangle of one side mapped linearly onto
+// the chord triangle of its corners' images on the other side (scaled to the
+// first side's area), area times symmetric Dirichlet density, with a fold
+// (image facing against the surface there) charged a fixed high density.
+#pragma once
+#include <Eigen/Core>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "intersurface/consistent_partition.h"
+
+namespace cmaps {
+
+constexpr double kChordInf = std::numeric_limits<double>::infinity();
+constexpr double kFoldPenalty = 1e6;  // energy density of an image triangle facing against the surface there
+// A vertex whose ring holds more target vertices than this stays where it is:
+// each trial re-maps all of them (such rings lie where the target is
+// compressed most, e.g. between unrelated feature pairs).
+constexpr int kMaxRemapped = 256;
+
+// A triangle's area and the cotangents of its angles.
+struct Shape {
+  double area = 0;
+  double cot[3] = {0, 0, 0};
+};
+
+inline Shape shape_of(const PartitionSide& side, int f) {
+  const Triangle& t = side.mesh.triangles()[f];
+  const Vec3 p[3] = {side.mesh.position(t[0]), side.mesh.position(t[1]), side.mesh.position(t[2])};
+  Shape s;
+  s.area = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
+  for (int i = 0; i < 3; ++i) {
+    const Vec3 u = p[(i + 1) % 3] - p[i], v = p[(i + 2) % 3] - p[i];
+    s.cot[i] = u.dot(v) / std::max(u.cross(v).norm(), 1e-300);
+  }
+  return s;
+}
+
+// A point's image on the other mesh (scaled to this mesh's area) and that mesh's normal there.
+struct Image {
+  Vec3 position = Vec3::Zero(), normal = Vec3::Zero();
+};
+
+// The image of the point with weights w in `side`'s triangle `face`, scaled.
+inline Image image_in(const PartitionSide& side, int face, const std::array<double, 3>& w, double scale) {
+  const Triangle& t = side.mesh.triangles()[face];
+  const Vec3 &a = side.mesh.position(t[0]), &b = side.mesh.position(t[1]), &c = side.mesh.position(t[2]);
+  return {scale * (w[0] * a + w[1] * b + w[2] * c), (b - a).cross(c - a).normalized()};
+}
+
+// Area times symmetric Dirichlet density of the linear map from a triangle
+// onto the chord triangle of its corners' images; inf when degenerate.
+inline double triangle_energy(const Shape& s, const Image* image[3]) {
+  if (s.area <= 0) return 0;
+  const Vec3 nq = (image[1]->position - image[0]->position).cross(image[2]->position - image[0]->position);
+  const double aq = 0.5 * nq.norm();
+  if (aq <= 1e-14 * s.area) return kChordInf;
+  if (nq.dot(image[0]->normal + image[1]->normal + image[2]->normal) < 0) return kFoldPenalty * s.area;
+  double dirichlet = 0;
+  for (int i = 0; i < 3; ++i)
+    dirichlet += s.cot[i] * (image[(i + 2) % 3]->position - image[(i + 1) % 3]->position).squaredNorm();
+  dirichlet /= 2 * s.area;
+  return s.area * dirichlet * (1 + (s.area / aq) * (s.area / aq));
+}
+
+// Barycentric coordinates of p in the 2D triangle (a, b, c); all -1 when degenerate.
+inline std::array<double, 3> barycentric(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                                         const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  const Eigen::Vector2d e = b - a, d = c - a, q = p - a;
+  const double det = e.x() * d.y() - e.y() * d.x();
+  if (std::abs(det) < 1e-300) return {-1, -1, -1};
+  const double s = (q.x() * d.y() - q.y() * d.x()) / det, t = (e.x() * q.y() - e.y() * q.x()) / det;
+  return {1 - s - t, s, t};
+}
+
+// The weights clamped to the triangle and normalized.
+inline std::array<double, 3> clamped(std::array<double, 3> w) {
+  double sum = 0;
+  for (double& x : w) sum += (x = std::max(0.0, x));
+  for (double& x : w) x = sum > 0 ? x / sum : 1.0 / 3;
+  return w;
+}
+
+// Twice the signed area of the 2D triangle (a, b, c).
+inline double twice_signed_area(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  const Eigen::Vector2d x = b - a, y = c - a;
+  return x.x() * y.y() - x.y() * y.x();
+}
+
+// The total area of a side's triangles.
+inline double side_area(const PartitionSide& side) {
+  double area = 0;
+  for (const Triangle& t : side.mesh.triangles())
+    area += 0.5 * (side.mesh.position(t[1]) - side.mesh.position(t[0]))
+                      .cross(side.mesh.position(t[2]) - side.mesh.position(t[0]))
+                      .norm();
+  return area;
+}
+
+}  // namespace cmaps

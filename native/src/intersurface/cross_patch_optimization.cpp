@@ -1,0 +1,387 @@
+#include "intersurface/cross_patch_optimization.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/parallel_for.h"
+#include "consistent_maps/errors.h"
+#include "intersurface/descent_step.h"
+
+namespace cmaps {
+namespace {
+
+constexpr double kInside = 1e-9;  // a base vertex this far inside a ring triangle (weights) is inside
+
+bool is_fan(const PartitionSide& side, int f) { return side.mesh.input_triangle(f) >= side.input_triangles; }
+
+}  // namespace
+
+struct CrossPatchMap::Move {
+  int home = -1;
+  Vec2 point = Vec2::Zero();
+  Image image;
+  std::vector<std::pair<int, RefinedPoint>> rehosted;  // vertex of B, its new triangle of A
+  std::vector<Image> back;                             // per rehosted vertex: its new image on A
+  double energy = kChordInf;
+};
+
+namespace {
+
+std::vector<char> fan_patches(const ConsistentPartition& partition) {
+  std::vector<char> fan(partition.triangles.size(), 0);
+  const PartitionSide& a = partition.sides[0];
+  for (int f = 0; f < int(a.patch.size()); ++f)
+    if (is_fan(a, f)) fan[a.patch[f]] = 1;
+  return fan;
+}
+
+}  // namespace
+
+CrossPatchMap::CrossPatchMap(const ConsistentPartition& partition, const PatchParameterization& uv_a,
+                             const PatchParameterization& uv_b)
+    : a_(partition.sides[0]),
+      b_(partition.sides[1]),
+      uv_b_(uv_b),
+      base_(partition, fan_patches(partition)),
+      scale_(std::sqrt(side_area(partition.sides[0]) / side_area(partition.sides[1]))) {
+  const int patches = int(partition.triangles.size());
+  const int na = a_.mesh.vertex_count(), nb = b_.mesh.vertex_count();
+  const std::vector<std::vector<int>> faces_a = faces_by_patch(a_, patches), faces_b = faces_by_patch(b_, patches);
+
+  shape_a_.resize(a_.mesh.triangles().size());
+  for (int f = 0; f < int(shape_a_.size()); ++f) shape_a_[f] = is_fan(a_, f) ? Shape{} : shape_of(a_, f);
+  shape_b_.resize(b_.mesh.triangles().size());
+  for (int g = 0; g < int(shape_b_.size()); ++g) shape_b_[g] = is_fan(b_, g) ? Shape{} : shape_of(b_, g);
+
+  // A's vertices: a home each (a surface patch beside a rim vertex, not its hole's fan).
+  home_.assign(na, -1);
+  point_.assign(na, Vec2::Zero());
+  fixed_.assign(na, 0);
+  for (int v = 0; v < na; ++v) {
+    const std::vector<int>& faces = a_.mesh.faces_of(v);
+    const auto surface = std::find_if(faces.begin(), faces.end(), [&](int f) { return !is_fan(a_, f); });
+    home_[v] = a_.patch[surface != faces.end() ? *surface : faces.front()];
+    point_[v] = uv_a.uv[home_[v]].at(v);
+    if (surface == faces.end() || std::any_of(faces.begin(), faces.end(), [&](int f) { return is_fan(a_, f); }))
+      fixed_[v] = 1;
+  }
+  base_vertex_.assign(na, -1);
+  for (int k = 0; k < int(a_.feature_vertex.size()); ++k) fixed_[a_.feature_vertex[k]] = 1, base_vertex_[a_.feature_vertex[k]] = k;
+  double turning = 0;
+  for (int f = 0; f < int(a_.mesh.triangles().size()); ++f) {
+    const Triangle& t = a_.mesh.triangles()[f];
+    const auto& uv = uv_a.uv[a_.patch[f]];
+    turning += twice_signed_area(uv.at(t[0]), uv.at(t[1]), uv.at(t[2]));
+  }
+  orientation_ = turning >= 0 ? 1 : -1;
+
+  locate_b_.reserve(patches);
+  for (int t = 0; t < patches; ++t) locate_b_.emplace_back(b_, uv_b.uv[t], faces_b[t]);
+  image_.resize(na);
+  for (int v = 0; v < na; ++v) image_[v] = image_on_b(home_[v], point_[v]);
+
+  // B's vertices: their canonical points (surface patches first), each in A's triangle holding it.
+  const std::vector<char> fan = fan_patches(partition);
+  b_points_.resize(nb);
+  for (int pass = 0; pass < 2; ++pass)
+    for (int t = 0; t < patches; ++t)
+      if (fan[t] == pass)
+        for (const auto& [w, p] : uv_b.uv[t]) b_points_[w].push_back({t, p});
+  host_.resize(nb);
+  back_image_.resize(nb);
+  hosted_.assign(a_.mesh.triangles().size(), {});
+  std::vector<PatchLocator> locate_a;
+  locate_a.reserve(patches);
+  for (int t = 0; t < patches; ++t) locate_a.emplace_back(a_, uv_a.uv[t], faces_a[t]);
+  for (int w = 0; w < nb; ++w) {
+    const auto& [t, p] = b_points_[w].front();
+    const auto [f, weights] = locate_a[t].locate(p);
+    host_[w] = {f, weights};
+    hosted_[f].push_back(w);
+    back_image_[w] = image_in(a_, f, weights, 1 / scale_);
+  }
+}
+
+Image CrossPatchMap::image_on_b(int home, const Vec2& point) const {
+  const auto [face, w] = locate_b_[home].locate(point);
+  return image_in(b_, face, w, scale_);
+}
+
+double CrossPatchMap::total_energy() const {
+  double e = 0, area = 0;
+  for (int f = 0; f < int(shape_a_.size()); ++f) {
+    const Triangle& t = a_.mesh.triangles()[f];
+    const Image* image[3] = {&image_[t[0]], &image_[t[1]], &image_[t[2]]};
+    const double fe = triangle_energy(shape_a_[f], image);
+    if (std::isfinite(fe)) e += fe, area += shape_a_[f].area;
+  }
+  for (int g = 0; g < int(shape_b_.size()); ++g) {
+    const Triangle& t = b_.mesh.triangles()[g];
+    const Image* image[3] = {&back_image_[t[0]], &back_image_[t[1]], &back_image_[t[2]]};
+    const double ge = triangle_energy(shape_b_[g], image);
+    if (std::isfinite(ge)) e += scale_ * scale_ * ge;
+  }
+  return area > 0 ? e / area : 0;
+}
+
+bool CrossPatchMap::develop(int u, int t, const Vec2& near, Vec2& result) const {
+  return base_vertex_[u] >= 0 ? base_.develop_corner(base_vertex_[u], t, near, result)
+                              : base_.develop(home_[u], point_[u], t, near, result);
+}
+
+int CrossPatchMap::develop_triangle(int f, const std::array<double, 3>& weights, std::array<Vec2, 3>& corners) const {
+  const Triangle& t = a_.mesh.triangles()[f];
+  int anchor = -1;
+  for (int k = 0; k < 3; ++k)
+    if (base_vertex_[t[k]] < 0 && (anchor < 0 || weights[k] > weights[anchor])) anchor = k;
+  const int plane = anchor < 0 ? a_.patch[f] : home_[t[anchor]];
+  const Vec2 near = anchor < 0 ? Vec2((kCanonicalCorner[0] + kCanonicalCorner[1] + kCanonicalCorner[2]) / 3)
+                               : point_[t[anchor]];
+  for (int k = 0; k < 3; ++k)
+    if (!develop(t[k], plane, near, corners[k])) return -1;
+  return plane;
+}
+
+// v's ring (v and its neighbours) developed into the plane of v's base triangle.
+bool CrossPatchMap::develop_ring(int v, std::unordered_map<int, Vec2>& ring) const {
+  const int t = home_[v];
+  ring[v] = point_[v];
+  for (int f : a_.mesh.faces_of(v))
+    for (int u : a_.mesh.triangles()[f])
+      if (!ring.count(u) && !develop(u, t, point_[v], ring[u])) return false;
+  return true;
+}
+
+CrossPatchMap::Move CrossPatchMap::trial(int v, const Vec2& q, const std::unordered_map<int, Vec2>& ring,
+                                         const std::vector<Vec2>& base_points) const {
+  Move m;
+  const std::vector<int>& faces = a_.mesh.faces_of(v);
+  const auto corners = [&](int f, std::array<Vec2, 3>& c) {
+    const Triangle& t = a_.mesh.triangles()[f];
+    for (int k = 0; k < 3; ++k) c[k] = t[k] == v ? q : ring.at(t[k]);
+  };
+  // Every ring triangle turns the right way and holds no base vertex.
+  for (int f : faces) {
+    std::array<Vec2, 3> c;
+    corners(f, c);
+    if (orientation_ * twice_signed_area(c[0], c[1], c[2]) <= 0) return m;
+    for (const Vec2& p : base_points) {
+      const auto w = barycentric(p, c[0], c[1], c[2]);
+      if (w[0] > kInside && w[1] > kInside && w[2] > kInside) return m;
+    }
+  }
+  if (!base_.home_of(home_[v], q, m.home, m.point)) return m;
+  m.image = image_on_b(m.home, m.point);
+
+  // B's vertices inside the ring: the ring triangle holding each with v at q.
+  const int t = home_[v];
+  std::vector<int> touched;
+  for (int f : faces)
+    for (int w : hosted_[f]) {
+      Vec2 at = Vec2::Zero();
+      double nearest = kChordInf;
+      for (const auto& [s, p] : b_points_[w]) {
+        Vec2 developed;
+        if (base_.develop(s, p, t, point_[v], developed) && (developed - point_[v]).squaredNorm() < nearest)
+          nearest = (developed - point_[v]).squaredNorm(), at = developed;
+      }
+      RefinedPoint best;
+      double score = -kChordInf;
+      for (int g : faces) {
+        std::array<Vec2, 3> c;
+        corners(g, c);
+        const auto weights = barycentric(at, c[0], c[1], c[2]);
+        const double low = std::min({weights[0], weights[1], weights[2]});
+        if (low > score) score = low, best = {g, weights};
+      }
+      if (score < -kInside) return m;  // outside the ring: a development gone wrong
+      best.weights = clamped(best.weights);
+      m.rehosted.push_back({w, best});
+      m.back.push_back(image_in(a_, best.face, best.weights, 1 / scale_));
+      for (int g : b_.mesh.faces_of(w)) touched.push_back(g);
+    }
+  std::sort(touched.begin(), touched.end());
+  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+
+  double e = 0;
+  for (int f : faces) {
+    const Triangle& tri = a_.mesh.triangles()[f];
+    const Image* image[3];
+    for (int k = 0; k < 3; ++k) image[k] = tri[k] == v ? &m.image : &image_[tri[k]];
+    e += triangle_energy(shape_a_[f], image);
+  }
+  for (int g : touched) {
+    const Triangle& tri = b_.mesh.triangles()[g];
+    const Image* image[3];
+    for (int k = 0; k < 3; ++k) {
+      image[k] = &back_image_[tri[k]];
+      for (std::size_t i = 0; i < m.rehosted.size(); ++i)
+        if (m.rehosted[i].first == tri[k]) image[k] = &m.back[i];
+    }
+    e += scale_ * scale_ * triangle_energy(shape_b_[g], image);
+  }
+  m.energy = e;
+  return m;
+}
+
+bool CrossPatchMap::improve(int v) {
+  if (fixed_[v]) return false;
+  std::size_t inside = 0;
+  for (int f : a_.mesh.faces_of(v)) inside += hosted_[f].size();
+  if (inside > std::size_t(kMaxRemapped)) return false;
+  std::unordered_map<int, Vec2> ring;
+  if (!develop_ring(v, ring)) return false;
+  // The base vertices near: corners of v's base triangle and of its neighbours, developed.
+  const int t = home_[v];
+  std::vector<Vec2> base_points(kCanonicalCorner, kCanonicalCorner + 3);
+  for (int k = 0; k < 3; ++k)
+    if (base_.neighbour(t, k) >= 0)
+      for (const Vec2& c : kCanonicalCorner) base_points.push_back(base_.from_neighbour(t, k, c));
+  const Vec2 x0 = point_[v];
+  const Move current = trial(v, x0, ring, base_points);
+  if (!std::isfinite(current.energy)) return false;
+  double length = 0;
+  for (const auto& [u, p] : ring) length += (p - x0).norm();
+  length /= std::max<std::size_t>(1, ring.size() - 1);
+  const auto move = descent_step(x0, length, current, [&](const Vec2& q) { return trial(v, q, ring, base_points); });
+  if (!move) return false;
+  apply(v, *move);
+  return true;
+}
+
+void CrossPatchMap::apply(int v, const Move& move) {
+  home_[v] = move.home;
+  point_[v] = move.point;
+  image_[v] = move.image;
+  for (int f : a_.mesh.faces_of(v)) hosted_[f].clear();
+  for (std::size_t i = 0; i < move.rehosted.size(); ++i) {
+    const auto& [w, at] = move.rehosted[i];
+    host_[w] = at;
+    back_image_[w] = move.back[i];
+    hosted_[at.face].push_back(w);
+  }
+}
+
+CrossPatchOptimization CrossPatchMap::optimize(int sweeps, const std::function<bool(double)>& keep_going) {
+  CrossPatchOptimization result;
+  result.energy_before = total_energy();
+  // Each sweep visits the vertices whose ring changed in the sweep before (all, at first).
+  const int n = a_.mesh.vertex_count();
+  std::vector<char> active(n, 1), next(n, 0);
+  for (int sweep = 0; sweep < sweeps; ++sweep) {
+    int moved = 0;
+    for (int v = 0; v < n; ++v) {
+      if (!active[v]) continue;
+      const int home = home_[v];
+      if (!improve(v)) continue;
+      ++moved;
+      result.crossings += home_[v] != home;
+      for (int f : a_.mesh.faces_of(v))
+        for (int u : a_.mesh.triangles()[f]) next[u] = 1;
+    }
+    result.moves += moved;
+    if (moved == 0) break;
+    if (keep_going && !keep_going(double(sweep + 1) / sweeps)) throw Cancelled();
+    active.swap(next);
+    std::fill(next.begin(), next.end(), 0);
+  }
+  result.energy_after = total_energy();
+  return result;
+}
+
+int CrossPatchMap::turned_triangles() const {
+  int turned = 0;
+  for (int f = 0; f < int(a_.mesh.triangles().size()); ++f) {
+    std::array<Vec2, 3> c;
+    turned += develop_triangle(f, {1, 1, 1}, c) < 0 || orientation_ * twice_signed_area(c[0], c[1], c[2]) <= 0;
+  }
+  return turned;
+}
+
+int CrossPatchMap::stray_hosts() const {
+  int stray = 0;
+  for (int w = 0; w < b_.mesh.vertex_count(); ++w) {
+    std::array<Vec2, 3> c;
+    const int plane = develop_triangle(host_[w].face, {1, 1, 1}, c);
+    Vec2 at;
+    bool inside = false;
+    for (const auto& [patch, p] : b_points_[w])
+      if (plane >= 0 && base_.develop(patch, p, plane, (c[0] + c[1] + c[2]) / 3, at)) {
+        const auto weights = barycentric(at, c[0], c[1], c[2]);
+        inside = inside || std::min({weights[0], weights[1], weights[2]}) >= -1e-9;
+      }
+    stray += !inside;
+  }
+  return stray;
+}
+
+RefinedPoint CrossPatchMap::locate_on_a(int patch, const Vec2& point, int near_face) const {
+  RefinedPoint best{near_face, {1.0 / 3, 1.0 / 3, 1.0 / 3}};
+  double score = -kChordInf;
+  for (int c : a_.mesh.triangles()[near_face])
+    for (int f : a_.mesh.faces_of(c)) {
+      // The triangle in its own plane (its corners lie close together, so
+      // their nearest copies are the right ones), the point carried there.
+      std::array<Vec2, 3> corner;
+      const int plane = develop_triangle(f, {1, 1, 1}, corner);
+      Vec2 at;
+      if (plane < 0 || !base_.develop(patch, point, plane, (corner[0] + corner[1] + corner[2]) / 3, at)) continue;
+      const auto weights = barycentric(at, corner[0], corner[1], corner[2]);
+      const double low = std::min({weights[0], weights[1], weights[2]});
+      if (low > score) score = low, best = {f, weights};
+    }
+  best.weights = clamped(best.weights);
+  return best;
+}
+
+std::vector<InputLocation> CrossPatchMap::map_a(const TriangleMesh& b_input, int threads) const {
+  std::vector<std::pair<int, Vec2>> points(a_.mesh.input_vertex_count());
+  for (int v = 0; v < int(points.size()); ++v) points[v] = {home_[v], point_[v]};
+  std::vector<InputLocation> image = locate_canonical(b_, uv_b_, b_input, points, threads);
+  snap_features(a_, b_, b_input, image);
+  return image;
+}
+
+std::vector<InputLocation> CrossPatchMap::map_b(const TriangleMesh& a_input) const {
+  std::vector<InputLocation> image(b_.mesh.input_vertex_count());
+  for (int w = 0; w < int(image.size()); ++w) image[w] = to_input(a_, a_input, host_[w].face, host_[w].weights);
+  snap_features(b_, a_, a_input, image);
+  return image;
+}
+
+std::vector<InputLocation> CrossPatchMap::map_a_corners(const TriangleMesh& a_input, const TriangleMesh& b_input,
+                                                        int threads) const {
+  const std::vector<RefinedPoint> corners = corner_points(a_, a_input, threads);
+  std::vector<std::pair<int, Vec2>> points(corners.size());
+  parallel_for(corners.size(), threads, [&](std::size_t i) {
+    // The triangle developed into the plane of its corner nearest the point.
+    std::array<Vec2, 3> c;
+    const int plane = develop_triangle(corners[i].face, corners[i].weights, c);
+    Vec2 p = Vec2::Zero();
+    for (int k = 0; k < 3; ++k) p += corners[i].weights[k] * c[k];
+    if (plane < 0 || !base_.home_of(plane, p, points[i].first, points[i].second)) {
+      // Never, short of a broken embedding: the nearest corner's own point.
+      const auto& w = corners[i].weights;
+      const int nearest = a_.mesh.triangles()[corners[i].face][int(std::max_element(w.begin(), w.end()) - w.begin())];
+      points[i] = {home_[nearest], point_[nearest]};
+    }
+  });
+  return locate_canonical(b_, uv_b_, b_input, points, threads);
+}
+
+std::vector<InputLocation> CrossPatchMap::map_b_corners(const TriangleMesh& a_input, const TriangleMesh& b_input,
+                                                        int threads) const {
+  const std::vector<RefinedPoint> corners = corner_points(b_, b_input, threads);
+  std::vector<InputLocation> image(corners.size());
+  parallel_for(corners.size(), threads, [&](std::size_t i) {
+    const auto [patch, p] = canonical_point(b_, uv_b_, corners[i]);
+    const Triangle& t = b_.mesh.triangles()[corners[i].face];
+    const auto& w = corners[i].weights;
+    const int nearest = t[int(std::max_element(w.begin(), w.end()) - w.begin())];
+    const RefinedPoint on_a = locate_on_a(patch, p, host_[nearest].face);
+    image[i] = to_input(a_, a_input, on_a.face, on_a.weights);
+  });
+  return image;
+}
+
+}  // namespace cmaps

@@ -1,0 +1,105 @@
+// The patch-wise map's last stage: the partition's paths stop being walls.
+// Until here A's vertices move inside their patch's canonical triangle and
+// slide along paths (patch_map_optimization.h), so the paths where the two
+// partitions were traced stay where they were traced, and whatever the
+// traced paths got wrong (a patch corner's angle far wider on one mesh than
+// on the other, a path hugging one side of a limb on A and the other on B)
+// stays wrong. Schreiner et al. 2004 let vertices cross the paths while the
+// map is refined; here A's embedding lives on the whole base mesh, glued
+// into one flat surface with cone points (base_complex.h), and each vertex
+// moves in the plane of its base triangle developed with its neighbours, into
+// a neighbour when the move crosses a side, for a lower symmetric Dirichlet
+// energy of both directions (chord_energy.h).
+//
+// Invariants: base vertices (the features) and hole fans stay where they
+// are; a move keeps every triangle of the vertex's ring turning the same
+// way as the whole embedding and holding no base vertex inside, and the
+// ring's outline does not move, so A's embedding stays a bijection onto the
+// base mesh and the map stays continuous and bijective. B's embedding is
+// fixed; each of B's vertices keeps the triangle of A holding it (re-found
+// among the ring's triangles when a ring moves), which gives the map back.
+#pragma once
+#include <functional>
+#include <unordered_map>
+#include <vector>
+
+#include "intersurface/base_complex.h"
+#include "intersurface/chord_energy.h"
+#include "intersurface/patch_locator.h"
+
+namespace cmaps {
+
+struct CrossPatchOptimization {
+  double energy_before = 0, energy_after = 0;  // area-weighted mean over A's triangles (both directions)
+  int moves = 0, crossings = 0;                // moves kept; those into another base triangle
+};
+
+class CrossPatchMap {
+ public:
+  // A = partition.sides[0] with its patch embeddings `uv_a`, B = sides[1]
+  // with `uv_b`.
+  CrossPatchMap(const ConsistentPartition& partition, const PatchParameterization& uv_a,
+                const PatchParameterization& uv_b);
+
+  // Sweeps over A's vertices (after the first, those whose ring changed)
+  // until one moves nothing or `sweeps` are done. `keep_going(fraction
+  // done)` is asked after each sweep; false throws Cancelled.
+  CrossPatchOptimization optimize(int sweeps, const std::function<bool(double)>& keep_going = {});
+
+  // The invariants, counted (both 0 unless broken): A's triangles that turn
+  // the wrong way in the plane of their first corner's base triangle, and
+  // B's vertices that lie outside the triangle of A said to hold them (by
+  // more than 1e-9 in barycentric weight).
+  int turned_triangles() const;
+  int stray_hosts() const;
+
+  // Per input vertex of A: its image on B's input triangles (features exact).
+  std::vector<InputLocation> map_a(const TriangleMesh& b_input, int threads) const;
+  // Per input vertex of B: its image on A's input triangles (features exact).
+  std::vector<InputLocation> map_b(const TriangleMesh& a_input) const;
+  // Per corner of A's and of B's input triangles: the image of the point of
+  // the triangle next to the corner (corner_points), for per-corner values.
+  std::vector<InputLocation> map_a_corners(const TriangleMesh& a_input, const TriangleMesh& b_input,
+                                           int threads) const;
+  std::vector<InputLocation> map_b_corners(const TriangleMesh& a_input, const TriangleMesh& b_input,
+                                           int threads) const;
+
+ private:
+  struct Move;
+  double total_energy() const;
+  bool improve(int v);
+  bool develop_ring(int v, std::unordered_map<int, Vec2>& ring) const;
+  // A's vertex u in base triangle t's plane, the copy nearest `near`.
+  bool develop(int u, int t, const Vec2& near, Vec2& result) const;
+  // A's triangle f developed into the plane of its corner of largest weight
+  // that is no base vertex (base vertices lie in several base triangles);
+  // that plane, or -1 when a corner cannot be developed.
+  int develop_triangle(int f, const std::array<double, 3>& weights, std::array<Vec2, 3>& corners) const;
+  Move trial(int v, const Vec2& q, const std::unordered_map<int, Vec2>& ring,
+             const std::vector<Vec2>& base_points) const;
+  void apply(int v, const Move& move);
+  // B's point (a base triangle and canonical point of B's embedding) on A,
+  // among A's triangles around `near_face`: the triangle and weights.
+  RefinedPoint locate_on_a(int patch, const Vec2& point, int near_face) const;
+  Image image_on_b(int home, const Vec2& point) const;
+
+  const PartitionSide& a_;
+  const PartitionSide& b_;
+  const PatchParameterization& uv_b_;
+  BaseComplex base_;
+  double scale_ = 1;        // B scaled to A's area
+  double orientation_ = 1;  // how A's embedding turns in the canonical plane
+  std::vector<int> home_;   // per vertex of A: its base triangle
+  std::vector<Vec2> point_; // per vertex of A: its canonical point there
+  std::vector<char> fixed_; // per vertex of A: base vertices and hole fans
+  std::vector<int> base_vertex_;  // per vertex of A: its base vertex, -1 for none
+  std::vector<Shape> shape_a_, shape_b_;  // per triangle (zero for a hole's fan)
+  std::vector<Image> image_;               // per vertex of A: its image on B
+  std::vector<PatchLocator> locate_b_;     // per base triangle: B's patch
+  std::vector<std::vector<std::pair<int, Vec2>>> b_points_;  // per vertex of B: its canonical points
+  std::vector<RefinedPoint> host_;          // per vertex of B: the triangle of A holding it
+  std::vector<Image> back_image_;           // per vertex of B: its image on A
+  std::vector<std::vector<int>> hosted_;    // per triangle of A: the vertices of B in it
+};
+
+}  // namespace cmaps

@@ -1,0 +1,40 @@
+// One step of the map optimizers' per-vertex descent (patch_map_optimization.h,
+// cross_patch_optimization.h): a point of the canonical plane moves against
+// the gradient of its energy (central differences, one-sided where a side is
+// infinite: a fold or a turned triangle) by half the mean length of its ring,
+// halved up to ten times until the energy drops.
+#pragma once
+#include <cmath>
+#include <optional>
+
+#include "intersurface/patch_parameterization.h"
+
+namespace cmaps {
+
+// `trial(p)` returns a move with its `energy` (inf where p is not allowed);
+// `current` is the move at x0. The first lower move found, if any.
+template <class Trial, class Move = decltype(std::declval<Trial>()(Vec2()))>
+std::optional<Move> descent_step(const Vec2& x0, double length, const Move& current, const Trial& trial) {
+  constexpr int kHalvings = 10;
+  const double h = 1e-4 * length;
+  Vec2 gradient;
+  for (int axis = 0; axis < 2; ++axis) {
+    Vec2 d = Vec2::Zero();
+    d[axis] = h;
+    const double plus = trial(x0 + d).energy, minus = trial(x0 - d).energy;
+    if (std::isfinite(plus) && std::isfinite(minus)) gradient[axis] = (plus - minus) / (2 * h);
+    else if (std::isfinite(plus)) gradient[axis] = (plus - current.energy) / h;
+    else if (std::isfinite(minus)) gradient[axis] = (current.energy - minus) / h;
+    else return std::nullopt;
+  }
+  if (!(gradient.norm() > 0)) return std::nullopt;
+  const Vec2 direction = -gradient.normalized();
+  double step = 0.5 * length;
+  for (int k = 0; k < kHalvings; ++k, step *= 0.5) {
+    Move move = trial(x0 + step * direction);
+    if (move.energy < current.energy) return move;
+  }
+  return std::nullopt;
+}
+
+}  // namespace cmaps
