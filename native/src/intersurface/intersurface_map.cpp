@@ -392,7 +392,6 @@ void map_partition(ConsistentPartition& partition, const ClosedMesh& closed_a, c
     for (std::size_t i = 0; i < located.size(); ++i) points[i] = {located[i].triangle, located[i].barycentric};
     return points;
   };
-  const PartitionSide &side_a = partition.sides[0], &side_b = partition.sides[1];
   const TriangleMesh &ca = closed_a.mesh, &cb = closed_b.mesh;
   // The surfaces' own points only (no hole centre, no fan corner); none lands in a fan.
   const auto surface_only = [&](std::vector<SurfacePoint> points, std::size_t count, const TriangleMesh& target) {
