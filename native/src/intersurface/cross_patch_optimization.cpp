@@ -42,7 +42,8 @@ CrossPatchMap::CrossPatchMap(const ConsistentPartition& partition, const PatchPa
     : a_(partition.sides[0]),
       b_(partition.sides[1]),
       uv_b_(uv_b),
-      base_(partition, fan_patches(partition)),
+      fan_(fan_patches(partition)),
+      base_(partition, fan_),
       scale_(std::sqrt(side_area(partition.sides[0]) / side_area(partition.sides[1]))) {
   const int patches = int(partition.triangles.size());
   const int na = a_.mesh.vertex_count(), nb = b_.mesh.vertex_count();
@@ -66,7 +67,10 @@ CrossPatchMap::CrossPatchMap(const ConsistentPartition& partition, const PatchPa
       fixed_[v] = 1;
   }
   base_vertex_.assign(na, -1);
-  for (int k = 0; k < int(a_.feature_vertex.size()); ++k) fixed_[a_.feature_vertex[k]] = 1, base_vertex_[a_.feature_vertex[k]] = k;
+  for (int k = 0; k < int(a_.feature_vertex.size()); ++k) {
+    fixed_[a_.feature_vertex[k]] = 1;
+    base_vertex_[a_.feature_vertex[k]] = k;
+  }
   double turning = 0;
   for (int f = 0; f < int(a_.mesh.triangles().size()); ++f) {
     const Triangle& t = a_.mesh.triangles()[f];
@@ -81,11 +85,10 @@ CrossPatchMap::CrossPatchMap(const ConsistentPartition& partition, const PatchPa
   for (int v = 0; v < na; ++v) image_[v] = image_on_b(home_[v], point_[v]);
 
   // B's vertices: their canonical points (surface patches first), each in A's triangle holding it.
-  const std::vector<char> fan = fan_patches(partition);
   b_points_.resize(nb);
   for (int pass = 0; pass < 2; ++pass)
     for (int t = 0; t < patches; ++t)
-      if (fan[t] == pass)
+      if (fan_[t] == pass)
         for (const auto& [w, p] : uv_b.uv[t]) b_points_[w].push_back({t, p});
   host_.resize(nb);
   back_image_.resize(nb);

@@ -86,6 +86,7 @@ class CrossPatchMap {
   const PartitionSide& a_;
   const PartitionSide& b_;
   const PatchParameterization& uv_b_;
+  const std::vector<char> fan_;  // per base triangle: whether it is a hole's fan
   BaseComplex base_;
   double scale_ = 1;        // B scaled to A's area
   double orientation_ = 1;  // how A's embedding turns in the canonical plane
