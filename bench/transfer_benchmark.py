@@ -291,8 +291,8 @@ def genus_main():
         write_attributed_obj(target_obj, stretched, triangles, colours, uv)  # its own attributes are not read
         for count in (0, 8, 16):
             features = farthest_points(vertices, count - 1) if count else []
-            *carried, wall, _, _ = pairwise_transfer(folder, source_obj, (vertices, triangles), target_obj,
-                                                     (stretched, triangles), features, 2)
+            *carried, wall, _, _, _ = pairwise_transfer(folder, source_obj, (vertices, triangles), target_obj,
+                                                        (stretched, triangles), features, 2)
             errors = errors_of(*carried, vertices, stretched, colours, uv)
             rows.append(f"| torus -> stretched copy | {count} | {wall:.1f} | {percentages(errors)} | "
                         f"{'yes' if max(errors) < TARGET else 'no'} |")
