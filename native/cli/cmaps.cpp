@@ -46,9 +46,10 @@ const char* const kUsage = R"(usage:
   cmaps consistent IN IN ... --features FILE -o DIR [--remesh N] [--grid N] [--first K] [--restarts K]
                    [--align] [--seed N] [--effort 0|1|2] [--threads N] [--json]
   cmaps intersurface A B [--features FILE] -o DIR [--method auto|sphere|partition] [--optimize R]
-                     [--restarts K] [--seed N] [--effort 0|1|2] [--threads N] [--json]
+                     [--cross-sweeps N] [--restarts K] [--seed N] [--effort 0|1|2] [--threads N] [--json]
   cmaps transfer SOURCE TARGET [--features FILE] -o OUT.obj [--positions] [--method auto|sphere|partition]
-                 [--optimize R] [--restarts K] [--seed N] [--effort 0|1|2] [--threads N] [--json]
+                 [--optimize R] [--cross-sweeps N] [--restarts K] [--seed N] [--effort 0|1|2] [--threads N]
+                 [--json]
   cmaps --help | --version
 
 commands:
@@ -127,6 +128,10 @@ options:
                      (0..100, default 2; 0 = the plain composition of the
                      two spherical maps, neither refitted to the other, and
                      the direct map as its patches are embedded)
+  --cross-sweeps N   intersurface, transfer: at most N sweeps of the direct
+                     map's vertices moving across the partition's paths
+                     (0..10000, default 20; 0 = the paths stay walls; more
+                     sweeps move paths farther, slowly)
   --method M         intersurface, transfer (genus 0): map through the common
                      sphere, directly through a consistent partition as for
                      genus >= 1, or auto (default): both, keeping the less
@@ -177,8 +182,8 @@ struct Arguments {
   std::string features, targets, refined_mesh;  // constrained only (features: consistent too)
   int remesh = 0, grid = 64, first = -1;        // consistent only
   bool remesh_given = false, grid_given = false, first_given = false;
-  int optimize = 2, restarts = 1;  // optimize: intersurface and transfer only
-  bool optimize_given = false, restarts_given = false;
+  int optimize = 2, restarts = 1, cross_sweeps = 20;  // optimize, cross_sweeps: intersurface and transfer only
+  bool optimize_given = false, restarts_given = false, cross_sweeps_given = false;
   std::optional<cmaps::IntersurfaceMethod> method;  // intersurface and transfer only
   std::uint64_t seed = 1;
   int effort = 1;
@@ -224,6 +229,8 @@ Arguments parse(const std::vector<std::string>& args) {
     else if (arg == "--grid") a.grid = int(parse_integer(arg, value(), 2, 4096)), a.grid_given = true;
     else if (arg == "--first") a.first = int(parse_integer(arg, value(), 0, 1 << 20)), a.first_given = true;
     else if (arg == "--optimize") a.optimize = int(parse_integer(arg, value(), 0, 100)), a.optimize_given = true;
+    else if (arg == "--cross-sweeps")
+      a.cross_sweeps = int(parse_integer(arg, value(), 0, 10000)), a.cross_sweeps_given = true;
     else if (arg == "--restarts") a.restarts = int(parse_integer(arg, value(), 1, 100)), a.restarts_given = true;
     else if (arg == "--method") {
       const std::string& name = value();
@@ -251,6 +258,8 @@ Arguments parse(const std::vector<std::string>& args) {
   if (a.command == "check" && !a.output.empty()) throw UsageError("check takes no -o");
   if (a.optimize_given && a.command != "intersurface" && a.command != "transfer")
     throw UsageError(a.command + " takes no --optimize (only intersurface and transfer do)");
+  if (a.cross_sweeps_given && a.command != "intersurface" && a.command != "transfer")
+    throw UsageError(a.command + " takes no --cross-sweeps (only intersurface and transfer do)");
   if (a.restarts_given && a.command != "intersurface" && a.command != "transfer" && a.command != "consistent")
     throw UsageError(a.command + " takes no --restarts (only consistent, intersurface and transfer do)");
   if (a.method && a.command != "intersurface" && a.command != "transfer")
@@ -849,6 +858,7 @@ cmaps::IntersurfaceOptions intersurface_options(const Arguments& args) {
   options.sphere.threads = args.threads;
   options.optimize_rounds = args.optimize;
   if (args.optimize == 0) options.correspondence_weight = 0;  // the plain composition
+  options.cross_sweeps = args.cross_sweeps;
   options.restarts = args.restarts;
   options.method = args.method.value_or(cmaps::IntersurfaceMethod::automatic);
   return options;

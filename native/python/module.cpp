@@ -529,7 +529,8 @@ std::pair<py::array_t<std::int32_t>, py::array_t<double>> to_numpy(const std::ve
 }
 
 py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, const py::handle& pairs_data, int grid,
-                          int optimize, int restarts, bool corner_images, int balance_rounds, const std::string& method,
+                          int optimize, int restarts, bool corner_images, int balance_rounds, int cross_sweeps,
+                          const std::string& method,
                           std::uint64_t seed, int effort, int threads, const py::object& progress) {
   cmaps::IntersurfaceOptions options;
   const std::optional<cmaps::IntersurfaceMethod> chosen = cmaps::parse_method(method);
@@ -539,6 +540,8 @@ py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, co
   if (balance_rounds < 0)
     raise(PyExc_ValueError, "balance_rounds must be at least 0, got " + std::to_string(balance_rounds));
   options.balance_rounds = balance_rounds;
+  if (cross_sweeps < 0) raise(PyExc_ValueError, "cross_sweeps must be at least 0, got " + std::to_string(cross_sweeps));
+  options.cross_sweeps = cross_sweeps;
   if (optimize < 0) raise(PyExc_ValueError, "optimize must be at least 0, got " + std::to_string(optimize));
   if (restarts < 1) raise(PyExc_ValueError, "restarts must be at least 1, got " + std::to_string(restarts));
   options.restarts = restarts;
@@ -993,6 +996,7 @@ PYBIND11_MODULE(_native, m) {
   m.def("intersurface_map", &intersurface_map, py::arg("mesh_a"), py::arg("mesh_b"),
         py::arg("feature_pairs") = py::list(), py::kw_only(), py::arg("grid") = 64, py::arg("optimize") = 2,
         py::arg("restarts") = 1, py::arg("corner_images") = false, py::arg("balance_rounds") = 4,
+        py::arg("cross_sweeps") = 20,
         py::arg("method") = "auto", py::arg("seed") = 1, py::arg("effort") = 1, py::arg("threads") = 2, py::arg("progress") = py::none(),
         "Inter-surface map between two meshes of equal genus, closed or with as many holes (genus >= 1:\n"
         "through a consistent partition into triangular patches, 'base_vertices' and 'base_triangles' of its\n"
@@ -1012,7 +1016,8 @@ PYBIND11_MODULE(_native, m) {
         "(area-normalized, optimum 4, each source triangle mapped linearly onto its corners' images),\n"
         "'flipped', 'degenerate', and 'composition_dirichlet' before the distortion optimization (optimize:\n"
         "its rounds, 0 = no optimization: for genus 0 the plain composition of the spherical maps; the\n"
-        "direct map's optimization also moves A's vertices across the partition's paths);\n"
+        "direct map's optimization also moves A's vertices across the partition's paths, at most\n"
+        "cross_sweeps sweeps, 0 = the paths stay walls);\n"
         "'median_symmetric_dirichlet' (the median triangle's; the mean is dominated by a few triangles);\n"
         "genus 0: 'restart_dirichlet', 'restart_median_dirichlet' and 'restart_flipped', the energies and\n"
         "folded samples (both directions summed) of each of the `restarts` maps through the sphere (restart k:\n"
