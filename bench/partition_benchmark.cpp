@@ -9,15 +9,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
-#include <regex>
-#include <sstream>
 #include <string>
 
 #include "consistent_maps/mesh_check.h"
 #include "consistent_maps/mesh_io.h"
 #include "intersurface/consistent_partition.h"
 #include "intersurface/patch_balance.h"
+#include "json_reader.h"
 
 using namespace cmaps;
 
@@ -25,23 +23,13 @@ static double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// The pairs of a features file's two columns (rows with null in either are skipped).
+// The pairs of a set's features file for its members `column_a` and `column_b` (features either lacks skipped).
 static std::vector<std::array<int, 2>> feature_pairs(const std::string& path, int column_a, int column_b) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  const std::string json = text.str();
+  const JsonValue root = JsonParser::parse_file(path);
+  const int members = root.members.empty() ? 0 : int(root.members.front().second.items.size());
   std::vector<std::array<int, 2>> pairs;
-  const std::regex row("\"[^\"]*\"\\s*:\\s*\\[([^\\]]*)\\]");
-  for (auto it = std::sregex_iterator(json.begin(), json.end(), row); it != std::sregex_iterator(); ++it) {
-    std::vector<std::string> cells;
-    std::stringstream list((*it)[1].str());
-    for (std::string cell; std::getline(list, cell, ',');)
-      cells.push_back(cell.substr(cell.find_first_not_of(" \n\t")));
-    const std::string &a = cells.at(column_a), &b = cells.at(column_b);
-    if (a.rfind("null", 0) == 0 || b.rfind("null", 0) == 0) continue;
-    pairs.push_back({std::stoi(a), std::stoi(b)});
-  }
+  for (const auto& [name, vertices] : read_set_feature_file(path, members))
+    if (vertices.at(column_a) >= 0 && vertices.at(column_b) >= 0) pairs.push_back({vertices[column_a], vertices[column_b]});
   return pairs;
 }
 

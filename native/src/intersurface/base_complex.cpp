@@ -17,12 +17,25 @@ std::pair<Vec2, Vec2> path_ends(const BaseTriangle& t, int k) {
   return t.reversed[k] ? std::pair{to, from} : std::pair{from, to};
 }
 
-}  // namespace
-
-bool in_canonical_triangle(const Vec2& p, double slack) {
+// Whether p lies in the canonical triangle, up to `slack` in barycentric weight.
+bool in_canonical_triangle(const Vec2& p, double slack = 0) {
   const auto w = barycentric(p, kCanonicalCorner[0], kCanonicalCorner[1], kCanonicalCorner[2]);
   return w[0] >= -slack && w[1] >= -slack && w[2] >= -slack;
 }
+
+// The candidate nearest `near` among those offered.
+struct NearestCopy {
+  const Vec2& near;
+  Vec2& result;
+  double best = std::numeric_limits<double>::infinity();
+  void consider(const Vec2& q) {
+    const double d = (q - near).squaredNorm();
+    if (d < best) best = d, result = q;
+  }
+  bool found() const { return best < std::numeric_limits<double>::infinity(); }
+};
+
+}  // namespace
 
 BaseComplex::BaseComplex(const ConsistentPartition& partition, const std::vector<char>& fan)
     : glue_(partition.triangles.size()) {
@@ -44,10 +57,9 @@ BaseComplex::BaseComplex(const ConsistentPartition& partition, const std::vector
       g.a = (complex_of(t_to) - complex_of(t_from)) / (complex_of(u_to) - complex_of(u_from));
       g.b = complex_of(t_from) - g.a * complex_of(u_from);
       // u must land on the other side of the edge (both embeddings turn alike), else no gluing.
-      const Vec2 centre_u = vec_of(g.a * complex_of((kCanonicalCorner[0] + kCanonicalCorner[1] + kCanonicalCorner[2]) / 3) + g.b);
-      const Vec2 centre_t = (kCanonicalCorner[0] + kCanonicalCorner[1] + kCanonicalCorner[2]) / 3;
+      const Vec2 centre = (kCanonicalCorner[0] + kCanonicalCorner[1] + kCanonicalCorner[2]) / 3;
       const Vec2 &e0 = kCanonicalCorner[k], &e1 = kCanonicalCorner[(k + 1) % 3];
-      if (twice_signed_area(e0, e1, centre_u) * twice_signed_area(e0, e1, centre_t) >= 0) continue;
+      if (twice_signed_area(e0, e1, from_neighbour(t, k, centre)) * twice_signed_area(e0, e1, centre) >= 0) continue;
       g.neighbour = u;
     }
   }
@@ -64,36 +76,28 @@ Vec2 BaseComplex::to_neighbour(int t, int k, const Vec2& p) const {
 }
 
 bool BaseComplex::develop(int from, const Vec2& p, int t, const Vec2& near, Vec2& result) const {
-  double best = std::numeric_limits<double>::infinity();
-  const auto consider = [&](const Vec2& q) {
-    const double d = (q - near).squaredNorm();
-    if (d < best) best = d, result = q;
-  };
-  if (from == t) consider(p);
+  NearestCopy nearest{near, result};
+  if (from == t) nearest.consider(p);
   for (int k = 0; k < 3; ++k) {
     const int n = glue_[t][k].neighbour;
     if (n < 0) continue;
-    if (n == from) consider(from_neighbour(t, k, p));
+    if (n == from) nearest.consider(from_neighbour(t, k, p));
     for (int j = 0; j < 3; ++j)
-      if (glue_[n][j].neighbour == from) consider(from_neighbour(t, k, from_neighbour(n, j, p)));
+      if (glue_[n][j].neighbour == from) nearest.consider(from_neighbour(t, k, from_neighbour(n, j, p)));
   }
-  return best < std::numeric_limits<double>::infinity();
+  return nearest.found();
 }
 
 bool BaseComplex::develop_corner(int vertex, int t, const Vec2& near, Vec2& result) const {
-  double best = std::numeric_limits<double>::infinity();
-  const auto consider = [&](const Vec2& q) {
-    const double d = (q - near).squaredNorm();
-    if (d < best) best = d, result = q;
-  };
+  NearestCopy nearest{near, result};
   for (int k = 0; k < 3; ++k) {
-    if (corners_[t][k] == vertex) consider(kCanonicalCorner[k]);
+    if (corners_[t][k] == vertex) nearest.consider(kCanonicalCorner[k]);
     const int n = glue_[t][k].neighbour;
     if (n < 0) continue;
     for (int j = 0; j < 3; ++j)
-      if (corners_[n][j] == vertex) consider(from_neighbour(t, k, kCanonicalCorner[j]));
+      if (corners_[n][j] == vertex) nearest.consider(from_neighbour(t, k, kCanonicalCorner[j]));
   }
-  return best < std::numeric_limits<double>::infinity();
+  return nearest.found();
 }
 
 bool BaseComplex::home_of(int t, const Vec2& p, int& home, Vec2& at) const {

@@ -22,7 +22,6 @@ class BaseComplex {
   // nothing crosses into a hole or out of it.
   BaseComplex(const ConsistentPartition& partition, const std::vector<char>& fan);
 
-  int triangles() const { return int(glue_.size()); }
   // The triangle across side k (corner k to corner k + 1) of t; -1 when none.
   int neighbour(int t, int k) const { return glue_[t][k].neighbour; }
   // A point of that neighbour's canonical plane in t's plane.
@@ -52,8 +51,5 @@ class BaseComplex {
   std::vector<std::array<Glue, 3>> glue_;
   std::vector<std::array<int, 3>> corners_;  // per base triangle: its base vertices
 };
-
-// Whether p lies in the canonical triangle, up to `slack` in barycentric weight.
-bool in_canonical_triangle(const Vec2& p, double slack = 0);
 
 }  // namespace cmaps

@@ -14,6 +14,12 @@ constexpr double kInside = 1e-9;  // a base vertex this far inside a ring triang
 
 bool is_fan(const PartitionSide& side, int f) { return side.mesh.input_triangle(f) >= side.input_triangles; }
 
+// The vertex of a refined point's triangle with the largest weight.
+int nearest_corner(const PartitionSide& side, const RefinedPoint& p) {
+  const auto& w = p.weights;
+  return side.mesh.triangles()[p.face][int(std::max_element(w.begin(), w.end()) - w.begin())];
+}
+
 }  // namespace
 
 struct CrossPatchMap::Move {
@@ -364,8 +370,7 @@ std::vector<InputLocation> CrossPatchMap::map_a_corners(const TriangleMesh& a_in
     for (int k = 0; k < 3; ++k) p += corners[i].weights[k] * c[k];
     if (plane < 0 || !base_.home_of(plane, p, points[i].first, points[i].second)) {
       // Never, short of a broken embedding: the nearest corner's own point.
-      const auto& w = corners[i].weights;
-      const int nearest = a_.mesh.triangles()[corners[i].face][int(std::max_element(w.begin(), w.end()) - w.begin())];
+      const int nearest = nearest_corner(a_, corners[i]);
       points[i] = {home_[nearest], point_[nearest]};
     }
   });
@@ -378,10 +383,7 @@ std::vector<InputLocation> CrossPatchMap::map_b_corners(const TriangleMesh& a_in
   std::vector<InputLocation> image(corners.size());
   parallel_for(corners.size(), threads, [&](std::size_t i) {
     const auto [patch, p] = canonical_point(b_, uv_b_, corners[i]);
-    const Triangle& t = b_.mesh.triangles()[corners[i].face];
-    const auto& w = corners[i].weights;
-    const int nearest = t[int(std::max_element(w.begin(), w.end()) - w.begin())];
-    const RefinedPoint on_a = locate_on_a(patch, p, host_[nearest].face);
+    const RefinedPoint on_a = locate_on_a(patch, p, host_[nearest_corner(b_, corners[i])].face);
     image[i] = to_input(a_, a_input, on_a.face, on_a.weights);
   });
   return image;

@@ -6,6 +6,7 @@
 #pragma once
 #include <cmath>
 #include <optional>
+#include <utility>
 
 #include "intersurface/patch_parameterization.h"
 

@@ -13,7 +13,6 @@
 namespace cmaps {
 namespace {
 
-constexpr double kInf = kChordInf;
 constexpr int kHalvings = 10;  // path slides' line search: step, step / 2, ...
 
 // One patch, both directions: the source's triangles mapped onto the target
@@ -100,7 +99,7 @@ class PatchEnergy {
     Image image;
     std::vector<std::pair<int, Image>> remapped;  // target vertex, its new image
     std::vector<int> hosts;                       // per remapped vertex: its new source triangle
-    double energy = kInf;
+    double energy = kChordInf;
   };
 
   // The energy of v's triangles in this patch and of the target's triangles
@@ -122,7 +121,7 @@ class PatchEnergy {
         const Vec2& q = target_uv_.at(w);
         int best = -1;
         std::array<double, 3> weights{};
-        double score = -kInf;
+        double score = -kChordInf;
         for (int g : faces) {
           const Triangle& t = source_.mesh.triangles()[g];
           Vec2 c[3];
