@@ -5,9 +5,12 @@
 // (image facing against the surface there) charged a fixed high density.
 #pragma once
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
+#include <vector>
 
 #include "intersurface/consistent_partition.h"
 
@@ -19,6 +22,18 @@ constexpr double kFoldPenalty = 1e6;  // energy density of an image triangle fac
 // each trial re-maps all of them (such rings lie where the target is
 // compressed most, e.g. between unrelated feature pairs).
 constexpr int kMaxRemapped = 256;
+// A point this far inside one of a ring's triangles (weights) is inside no
+// other: the search for the triangle holding it can stop there.
+constexpr double kSurelyInside = 1e-12;
+
+// The entry of target vertex w in `sorted` (sorted by vertex), or nullptr. A
+// move lists the target vertices it re-maps so: a ring can hold hundreds, and
+// each of their triangles looks its corners up.
+template <class T>
+const T* find_remapped(const std::vector<std::pair<int, T>>& sorted, int w) {
+  const auto it = std::lower_bound(sorted.begin(), sorted.end(), w, [](const auto& x, int v) { return x.first < v; });
+  return it != sorted.end() && it->first == w ? &it->second : nullptr;
+}
 
 // A triangle's area and the cotangents of its angles.
 struct Shape {

@@ -23,11 +23,14 @@ int nearest_corner(const PartitionSide& side, const RefinedPoint& p) {
 }  // namespace
 
 struct CrossPatchMap::Move {
+  struct Rehost {
+    RefinedPoint at;  // the vertex of B's new triangle of A
+    Image back;       // its new image on A
+  };
   int home = -1;
   Vec2 point = Vec2::Zero();
   Image image;
-  std::vector<std::pair<int, RefinedPoint>> rehosted;  // vertex of B, its new triangle of A
-  std::vector<Image> back;                             // per rehosted vertex: its new image on A
+  std::vector<std::pair<int, Rehost>> rehosted;  // per vertex of B (sorted)
   double energy = kChordInf;
 };
 
@@ -151,41 +154,31 @@ int CrossPatchMap::develop_triangle(int f, const std::array<double, 3>& weights,
   return plane;
 }
 
-// v's ring (v and its neighbours) developed into the plane of v's base triangle.
-bool CrossPatchMap::develop_ring(int v, std::unordered_map<int, Vec2>& ring) const {
+// What a vertex's trials share, gathered once per move: v's ring (v and its
+// neighbours) developed into the plane of v's base triangle, the base
+// vertices near (corners of that triangle and of its neighbours) and B's
+// vertices inside the ring, developed into that plane too.
+struct CrossPatchMap::Ring {
+  std::unordered_map<int, Vec2> at;
+  std::vector<Vec2> base_points;
+  std::vector<std::pair<int, Vec2>> hosted;  // vertex of B, its point
+  Vec2 low, high;                            // the box around v's neighbours
+};
+
+bool CrossPatchMap::gather_ring(int v, Ring& ring) const {
   const int t = home_[v];
-  ring[v] = point_[v];
+  ring.at[v] = point_[v];
   for (int f : a_.mesh.faces_of(v))
     for (int u : a_.mesh.triangles()[f])
-      if (!ring.count(u) && !develop(u, t, point_[v], ring[u])) return false;
-  return true;
-}
-
-CrossPatchMap::Move CrossPatchMap::trial(int v, const Vec2& q, const std::unordered_map<int, Vec2>& ring,
-                                         const std::vector<Vec2>& base_points) const {
-  Move m;
-  const std::vector<int>& faces = a_.mesh.faces_of(v);
-  const auto corners = [&](int f, std::array<Vec2, 3>& c) {
-    const Triangle& t = a_.mesh.triangles()[f];
-    for (int k = 0; k < 3; ++k) c[k] = t[k] == v ? q : ring.at(t[k]);
-  };
-  // Every ring triangle turns the right way and holds no base vertex.
-  for (int f : faces) {
-    std::array<Vec2, 3> c;
-    corners(f, c);
-    if (orientation_ * twice_signed_area(c[0], c[1], c[2]) <= 0) return m;
-    for (const Vec2& p : base_points) {
-      const auto w = barycentric(p, c[0], c[1], c[2]);
-      if (w[0] > kInside && w[1] > kInside && w[2] > kInside) return m;
-    }
-  }
-  if (!base_.home_of(home_[v], q, m.home, m.point)) return m;
-  m.image = image_on_b(m.home, m.point);
-
-  // B's vertices inside the ring: the ring triangle holding each with v at q.
-  const int t = home_[v];
-  std::vector<int> touched;
-  for (int f : faces)
+      if (!ring.at.count(u) && !develop(u, t, point_[v], ring.at[u])) return false;
+  ring.low = ring.high = point_[v];
+  for (const auto& [u, p] : ring.at)
+    if (u != v) ring.low = ring.low.cwiseMin(p), ring.high = ring.high.cwiseMax(p);
+  ring.base_points.assign(kCanonicalCorner, kCanonicalCorner + 3);
+  for (int k = 0; k < 3; ++k)
+    if (base_.neighbour(t, k) >= 0)
+      for (const Vec2& c : kCanonicalCorner) ring.base_points.push_back(base_.from_neighbour(t, k, c));
+  for (int f : a_.mesh.faces_of(v))
     for (int w : hosted_[f]) {
       Vec2 at = Vec2::Zero();
       double nearest = kChordInf;
@@ -194,21 +187,54 @@ CrossPatchMap::Move CrossPatchMap::trial(int v, const Vec2& q, const std::unorde
         if (base_.develop(s, p, t, point_[v], developed) && (developed - point_[v]).squaredNorm() < nearest)
           nearest = (developed - point_[v]).squaredNorm(), at = developed;
       }
-      RefinedPoint best;
-      double score = -kChordInf;
-      for (int g : faces) {
-        std::array<Vec2, 3> c;
-        corners(g, c);
-        const auto weights = barycentric(at, c[0], c[1], c[2]);
-        const double low = std::min({weights[0], weights[1], weights[2]});
-        if (low > score) score = low, best = {g, weights};
-      }
-      if (score < -kInside) return m;  // outside the ring: a development gone wrong
-      best.weights = clamped(best.weights);
-      m.rehosted.push_back({w, best});
-      m.back.push_back(image_in(a_, best.face, best.weights, 1 / scale_));
-      for (int g : b_.mesh.faces_of(w)) touched.push_back(g);
+      ring.hosted.push_back({w, at});
     }
+  return true;
+}
+
+CrossPatchMap::Move CrossPatchMap::trial(int v, const Vec2& q, const Ring& ring) const {
+  Move m;
+  const std::vector<int>& faces = a_.mesh.faces_of(v);
+  const auto corners = [&](int f, std::array<Vec2, 3>& c) {
+    const Triangle& t = a_.mesh.triangles()[f];
+    for (int k = 0; k < 3; ++k) c[k] = t[k] == v ? q : ring.at.at(t[k]);
+  };
+  // Every ring triangle turns the right way and holds no base vertex (only
+  // those in the box around the ring and q can be inside one).
+  const Vec2 low = ring.low.cwiseMin(q), high = ring.high.cwiseMax(q);
+  std::vector<Vec2> near;
+  for (const Vec2& p : ring.base_points)
+    if ((p.array() >= low.array()).all() && (p.array() <= high.array()).all()) near.push_back(p);
+  for (int f : faces) {
+    std::array<Vec2, 3> c;
+    corners(f, c);
+    if (orientation_ * twice_signed_area(c[0], c[1], c[2]) <= 0) return m;
+    for (const Vec2& p : near) {
+      const auto w = barycentric(p, c[0], c[1], c[2]);
+      if (w[0] > kInside && w[1] > kInside && w[2] > kInside) return m;
+    }
+  }
+  if (!base_.home_of(home_[v], q, m.home, m.point)) return m;
+  m.image = image_on_b(m.home, m.point);
+
+  // B's vertices inside the ring: the ring triangle holding each with v at q.
+  std::vector<int> touched;
+  for (const auto& [w, at] : ring.hosted) {
+    RefinedPoint best;
+    double score = -kChordInf;
+    for (auto g = faces.begin(); g != faces.end() && score <= kSurelyInside; ++g) {
+      std::array<Vec2, 3> c;
+      corners(*g, c);
+      const auto weights = barycentric(at, c[0], c[1], c[2]);
+      const double low = std::min({weights[0], weights[1], weights[2]});
+      if (low > score) score = low, best = {*g, weights};
+    }
+    if (score < -kInside) return m;  // outside the ring: a development gone wrong
+    best.weights = clamped(best.weights);
+    m.rehosted.push_back({w, {best, image_in(a_, best.face, best.weights, 1 / scale_)}});
+    for (int g : b_.mesh.faces_of(w)) touched.push_back(g);
+  }
+  std::sort(m.rehosted.begin(), m.rehosted.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
   std::sort(touched.begin(), touched.end());
   touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
 
@@ -223,9 +249,8 @@ CrossPatchMap::Move CrossPatchMap::trial(int v, const Vec2& q, const std::unorde
     const Triangle& tri = b_.mesh.triangles()[g];
     const Image* image[3];
     for (int k = 0; k < 3; ++k) {
-      image[k] = &back_image_[tri[k]];
-      for (std::size_t i = 0; i < m.rehosted.size(); ++i)
-        if (m.rehosted[i].first == tri[k]) image[k] = &m.back[i];
+      const Move::Rehost* rehost = find_remapped(m.rehosted, tri[k]);
+      image[k] = rehost ? &rehost->back : &back_image_[tri[k]];
     }
     e += scale_ * scale_ * triangle_energy(shape_b_[g], image);
   }
@@ -238,21 +263,15 @@ bool CrossPatchMap::improve(int v) {
   std::size_t inside = 0;
   for (int f : a_.mesh.faces_of(v)) inside += hosted_[f].size();
   if (inside > std::size_t(kMaxRemapped)) return false;
-  std::unordered_map<int, Vec2> ring;
-  if (!develop_ring(v, ring)) return false;
-  // The base vertices near: corners of v's base triangle and of its neighbours, developed.
-  const int t = home_[v];
-  std::vector<Vec2> base_points(kCanonicalCorner, kCanonicalCorner + 3);
-  for (int k = 0; k < 3; ++k)
-    if (base_.neighbour(t, k) >= 0)
-      for (const Vec2& c : kCanonicalCorner) base_points.push_back(base_.from_neighbour(t, k, c));
+  Ring ring;
+  if (!gather_ring(v, ring)) return false;
   const Vec2 x0 = point_[v];
-  const Move current = trial(v, x0, ring, base_points);
+  const Move current = trial(v, x0, ring);
   if (!std::isfinite(current.energy)) return false;
   double length = 0;
-  for (const auto& [u, p] : ring) length += (p - x0).norm();
-  length /= std::max<std::size_t>(1, ring.size() - 1);
-  const auto move = descent_step(x0, length, current, [&](const Vec2& q) { return trial(v, q, ring, base_points); });
+  for (const auto& [u, p] : ring.at) length += (p - x0).norm();
+  length /= std::max<std::size_t>(1, ring.at.size() - 1);
+  const auto move = descent_step(x0, length, current, [&](const Vec2& q) { return trial(v, q, ring); });
   if (!move) return false;
   apply(v, *move);
   return true;
@@ -263,11 +282,10 @@ void CrossPatchMap::apply(int v, const Move& move) {
   point_[v] = move.point;
   image_[v] = move.image;
   for (int f : a_.mesh.faces_of(v)) hosted_[f].clear();
-  for (std::size_t i = 0; i < move.rehosted.size(); ++i) {
-    const auto& [w, at] = move.rehosted[i];
-    host_[w] = at;
-    back_image_[w] = move.back[i];
-    hosted_[at.face].push_back(w);
+  for (const auto& [w, rehost] : move.rehosted) {
+    host_[w] = rehost.at;
+    back_image_[w] = rehost.back;
+    hosted_[rehost.at.face].push_back(w);
   }
 }
 

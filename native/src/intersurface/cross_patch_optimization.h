@@ -66,17 +66,18 @@ class CrossPatchMap {
 
  private:
   struct Move;
+  struct Ring;
   double total_energy() const;
   bool improve(int v);
-  bool develop_ring(int v, std::unordered_map<int, Vec2>& ring) const;
+  bool gather_ring(int v, Ring& ring) const;
   // A's vertex u in base triangle t's plane, the copy nearest `near`.
   bool develop(int u, int t, const Vec2& near, Vec2& result) const;
   // A's triangle f developed into the plane of its corner of largest weight
   // that is no base vertex (base vertices lie in several base triangles);
   // that plane, or -1 when a corner cannot be developed.
   int develop_triangle(int f, const std::array<double, 3>& weights, std::array<Vec2, 3>& corners) const;
-  Move trial(int v, const Vec2& q, const std::unordered_map<int, Vec2>& ring,
-             const std::vector<Vec2>& base_points) const;
+  // v moved to q of its ring's plane: the move, with its energy (inf when not allowed).
+  Move trial(int v, const Vec2& q, const Ring& ring) const;
   void apply(int v, const Move& move);
   // B's point (a base triangle and canonical point of B's embedding) on A,
   // among A's triangles around `near_face`: the triangle and weights.

@@ -94,11 +94,14 @@ class PatchEnergy {
   }
 
   // Vertex v at canonical point p: its image, the re-mapped target vertices, the ring's energy.
+  struct Remap {
+    Image image;  // the target vertex's new image
+    int host;     // its new source triangle
+  };
   struct Move {
     Vec2 point;
     Image image;
-    std::vector<std::pair<int, Image>> remapped;  // target vertex, its new image
-    std::vector<int> hosts;                       // per remapped vertex: its new source triangle
+    std::vector<std::pair<int, Remap>> remapped;  // per target vertex (sorted)
     double energy = kChordInf;
   };
 
@@ -122,21 +125,21 @@ class PatchEnergy {
         int best = -1;
         std::array<double, 3> weights{};
         double score = -kChordInf;
-        for (int g : faces) {
-          const Triangle& t = source_.mesh.triangles()[g];
+        for (auto g = faces.begin(); g != faces.end() && score <= kSurelyInside; ++g) {
+          const Triangle& t = source_.mesh.triangles()[*g];
           Vec2 c[3];
           for (int k = 0; k < 3; ++k) c[k] = t[k] == v ? p : uv_.at(t[k]);
           const auto b = barycentric(q, c[0], c[1], c[2]);
           const double low = std::min({b[0], b[1], b[2]});
-          if (low > score) score = low, best = g, weights = b;
+          if (low > score) score = low, best = *g, weights = b;
         }
         weights = clamped(weights);
         // The image lies in the moved triangle: v's position enters through its weight.
-        m.remapped.push_back({w, image_in(source_, best, weights, 1 / scale_)});
-        m.hosts.push_back(best);
+        m.remapped.push_back({w, {image_in(source_, best, weights, 1 / scale_), best}});
         for (int g : target_.mesh.faces_of(w)) touched.push_back(g);
       }
     }
+    std::sort(m.remapped.begin(), m.remapped.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
     std::sort(touched.begin(), touched.end());
     touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
     double e = 0;
@@ -151,9 +154,9 @@ class PatchEnergy {
     uv_[v] = m.point;
     image_[v] = m.image;
     for (int f : ring(v)) host_.erase(f);
-    for (size_t i = 0; i < m.remapped.size(); ++i) {
-      back_image_[m.remapped[i].first] = m.remapped[i].second;
-      host_[m.hosts[i]].push_back(m.remapped[i].first);
+    for (const auto& [w, remap] : m.remapped) {
+      back_image_[w] = remap.image;
+      host_[remap.host].push_back(w);
     }
   }
 
@@ -175,13 +178,12 @@ class PatchEnergy {
     return triangle_energy(shape_.at(f), image);
   }
 
-  double target_energy(int g, const std::vector<std::pair<int, Image>>& remapped) const {
+  double target_energy(int g, const std::vector<std::pair<int, Remap>>& remapped) const {
     const Triangle& t = target_.mesh.triangles()[g];
     const Image* image[3];
     for (int k = 0; k < 3; ++k) {
-      image[k] = &back_image_.at(t[k]);
-      for (const auto& [w, i] : remapped)
-        if (w == t[k]) image[k] = &i;
+      const Remap* remap = find_remapped(remapped, t[k]);
+      image[k] = remap ? &remap->image : &back_image_.at(t[k]);
     }
     return triangle_energy(back_shape_.at(g), image);
   }
