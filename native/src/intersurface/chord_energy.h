@@ -22,9 +22,6 @@ constexpr double kFoldPenalty = 1e6;  // energy density of an image triangle fac
 // each trial re-maps all of them (such rings lie where the target is
 // compressed most, e.g. between unrelated feature pairs).
 constexpr int kMaxRemapped = 256;
-// A point this far inside one of a ring's triangles (weights) is inside no
-// other: the search for the triangle holding it can stop there.
-constexpr double kSurelyInside = 1e-12;
 
 // The entry of target vertex w in `sorted` (sorted by vertex), or nullptr. A
 // move lists the target vertices it re-maps so: a ring can hold hundreds, and

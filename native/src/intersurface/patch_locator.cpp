@@ -50,7 +50,8 @@ std::pair<int, std::array<double, 3>> PatchLocator::locate(const Vec2& p) const 
     const double m = std::min({w[0], w[1], w[2]});
     if (m > score) score = m, best = i, weights = w;
   };
-  for (int i : buckets_[y * cells_ + x]) test(i);
+  for (auto i = buckets_[y * cells_ + x].begin(); i != buckets_[y * cells_ + x].end() && score <= kSurelyInside; ++i)
+    test(*i);
   if (score < -1e-9)
     for (int i = 0; i < int(faces_.size()); ++i) test(i);
   if (best < 0) throw Error("internal error: point outside every patch triangle");

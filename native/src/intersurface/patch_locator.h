@@ -12,6 +12,10 @@
 
 namespace cmaps {
 
+// A point this far inside one triangle of an embedding (in barycentric
+// weight) is inside no other: a search for the triangle holding it can stop.
+constexpr double kSurelyInside = 1e-12;
+
 class PatchLocator {
  public:
   // `faces`: the patch's triangles of `side`, `uv` their corners' canonical points.
