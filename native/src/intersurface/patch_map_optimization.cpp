@@ -18,35 +18,60 @@ constexpr int kHalvings = 10;  // path slides' line search: step, step / 2, ...
 // One patch, both directions: the source's triangles mapped onto the target
 // and the target's triangles mapped back, as functions of one free source
 // vertex's canonical point. Moving it re-maps the target vertices inside its
-// ring (the ring's outline stays, so no others).
+// ring (the ring's outline stays, so no others). Vertices and triangles are
+// numbered locally, in the order of their indices in the meshes.
 class PatchEnergy {
  public:
   PatchEnergy(const PartitionSide& source, std::unordered_map<int, Vec2>& uv, const std::vector<int>& faces,
               const PartitionSide& target, const std::unordered_map<int, Vec2>& target_uv,
               const std::vector<int>& target_faces, double scale)
-      : source_(source), uv_(uv), target_(target), target_uv_(target_uv), scale_(scale) {
+      : source_(source), uv_(uv), target_(target), scale_(scale) {
     target_locator_ = std::make_unique<PatchLocator>(target, target_uv, target_faces);
     const PatchLocator onto_source(source, uv, faces);
-    // A hole's temporary fan keeps its embedding valid but weighs nothing.
-    for (int f : faces) {
-      shape_[f] = source.mesh.input_triangle(f) < source.input_triangles ? shape_of(source, f) : Shape{};
-      for (int v : source.mesh.triangles()[f]) {
-        ring_[v].push_back(f);
-        if (!image_.count(v)) image_[v] = locate(*target_locator_, target, uv.at(v), scale);
-      }
+    vertex_ = sorted_corners(source, faces);
+    for (int i = 0; i < int(vertex_.size()); ++i) local_[vertex_[i]] = i;
+    point_.resize(vertex_.size());
+    image_.resize(vertex_.size());
+    for (int i = 0; i < int(vertex_.size()); ++i) {
+      point_[i] = uv.at(vertex_[i]);
+      image_[i] = locate(*target_locator_, target, point_[i], scale);
     }
+    // A hole's temporary fan keeps its embedding valid but weighs nothing.
+    ring_.resize(vertex_.size());
+    for (int f : faces) {
+      const Triangle& t = source.mesh.triangles()[f];
+      face_.push_back(f);
+      triangle_.push_back({local_.at(t[0]), local_.at(t[1]), local_.at(t[2])});
+      shape_.push_back(source.mesh.input_triangle(f) < source.input_triangles ? shape_of(source, f) : Shape{});
+      for (int k = 0; k < 3; ++k) ring_[triangle_.back()[k]].push_back(int(triangle_.size()) - 1);
+    }
+    std::unordered_map<int, int> local_face;
+    for (int i = 0; i < int(faces.size()); ++i) local_face[faces[i]] = i;
+    const std::vector<int> target_vertex = sorted_corners(target, target_faces);
+    std::unordered_map<int, int> target_local;
+    for (int i = 0; i < int(target_vertex.size()); ++i) target_local[target_vertex[i]] = i;
+    back_image_.resize(target_vertex.size());
+    target_point_.resize(target_vertex.size());
+    target_ring_.resize(target_vertex.size());
+    host_.resize(faces.size());
+    std::vector<char> seen(target_vertex.size(), 0);
     for (int g : target_faces) {
-      back_shape_[g] = target.mesh.input_triangle(g) < target.input_triangles ? shape_of(target, g) : Shape{};
-      for (int w : target.mesh.triangles()[g])
-        if (!back_image_.count(w)) {
-          const auto [f, weights] = onto_source.locate(target_uv.at(w));
-          back_image_[w] = image_in(source, f, weights, 1 / scale);
-          host_[f].push_back(w);
-        }
+      const Triangle& t = target.mesh.triangles()[g];
+      back_triangle_.push_back({target_local.at(t[0]), target_local.at(t[1]), target_local.at(t[2])});
+      back_shape_.push_back(target.mesh.input_triangle(g) < target.input_triangles ? shape_of(target, g) : Shape{});
+      for (int w : back_triangle_.back()) {
+        target_ring_[w].push_back(int(back_triangle_.size()) - 1);
+        if (seen[w]) continue;
+        seen[w] = 1;
+        target_point_[w] = target_uv.at(target_vertex[w]);
+        const auto [f, weights] = onto_source.locate(target_point_[w]);
+        back_image_[w] = image_in(source, f, weights, 1 / scale);
+        host_[local_face.at(f)].push_back(w);
+      }
     }
     // All triangles of the embedding turn the same way (it is bijective); keep it so.
     double total = 0;
-    for (int f : faces) total += signed_area(f, -1, Vec2());
+    for (int f = 0; f < int(triangle_.size()); ++f) total += signed_area(f, -1, Vec2());
     orientation_ = total >= 0 ? 1 : -1;
   }
 
@@ -54,38 +79,36 @@ class PatchEnergy {
   double total(double& area) const {
     double e = 0;
     area = 0;
-    for (const auto& [f, s] : shape_) {
+    for (int f = 0; f < int(triangle_.size()); ++f) {
       const double fe = source_energy(f, -1, nullptr);
-      if (std::isfinite(fe)) e += fe, area += s.area;
+      if (std::isfinite(fe)) e += fe, area += shape_[f].area;
     }
-    for (const auto& [g, s] : back_shape_) {
+    for (int g = 0; g < int(back_triangle_.size()); ++g) {
       const double ge = target_energy(g, {});
       if (std::isfinite(ge)) e += scale_ * scale_ * ge;
     }
     return e;
   }
 
-  // Whether v may move: not when its ring here holds too many target vertices to re-map.
+  // Whether mesh vertex v may move: not when its ring here holds too many target vertices to re-map.
   bool movable(int v) const {
     std::size_t inside = 0;
-    for (int f : ring(v)) {
-      const auto it = host_.find(f);
-      if (it != host_.end()) inside += it->second.size();
-    }
+    for (int f : ring_[local_.at(v)]) inside += host_[f].size();
     return inside <= kMaxRemapped;
   }
 
-  // One descent step of vertex v (descent_step.h).
+  // One descent step of mesh vertex v (descent_step.h).
   bool improve(int v) {
     if (!movable(v)) return false;
-    const Vec2 u0 = uv_.at(v);
+    const int i = local_.at(v);
+    const Vec2 u0 = point_[i];
     const Move current = trial(v, u0);
     if (!std::isfinite(current.energy)) return false;
     double length = 0;
     int count = 0;
-    for (int f : ring(v))
-      for (int w : source_.mesh.triangles()[f])
-        if (w != v) length += (uv_.at(w) - u0).norm(), ++count;
+    for (int f : ring_[i])
+      for (int j : triangle_[f])
+        if (j != i) length += (point_[j] - u0).norm(), ++count;
     length /= std::max(count, 1);
     const auto move = descent_step(u0, length, current, [&](const Vec2& p) { return trial(v, p); });
     if (!move) return false;
@@ -96,64 +119,61 @@ class PatchEnergy {
   // Vertex v at canonical point p: its image, the re-mapped target vertices, the ring's energy.
   struct Remap {
     Image image;  // the target vertex's new image
-    int host;     // its new source triangle
+    int host;     // its new source triangle (local)
   };
   struct Move {
     Vec2 point;
     Image image;
-    std::vector<std::pair<int, Remap>> remapped;  // per target vertex (sorted)
+    std::vector<std::pair<int, Remap>> remapped;  // per local target vertex (sorted)
     double energy = kChordInf;
   };
 
-  // The energy of v's triangles in this patch and of the target's triangles
-  // around the target vertices they hold, with v at p; inf when one of v's
-  // triangles would turn over.
+  // The energy of mesh vertex v's triangles in this patch and of the
+  // target's triangles around the target vertices they hold, with v at p;
+  // inf when one of v's triangles would turn over.
   Move trial(int v, const Vec2& p) const {
     Move m;
     m.point = p;
-    const std::vector<int>& faces = ring(v);
+    const int i = local_.at(v);
+    const std::vector<int>& faces = ring_[i];
     for (int f : faces)
-      if (orientation_ * signed_area(f, v, p) <= 0) return m;
+      if (orientation_ * signed_area(f, i, p) <= 0) return m;
     m.image = locate(*target_locator_, target_, p, scale_);
     // Target vertices inside the ring: their source triangle with v at p.
     std::vector<int> touched;
-    for (int f : faces) {
-      const auto it = host_.find(f);
-      if (it == host_.end()) continue;
-      for (int w : it->second) {
-        const Vec2& q = target_uv_.at(w);
+    for (int f : faces)
+      for (int w : host_[f]) {
+        const Vec2& q = target_point_[w];
         int best = -1;
         std::array<double, 3> weights{};
         double score = -kChordInf;
         for (auto g = faces.begin(); g != faces.end() && score <= kSurelyInside; ++g) {
-          const Triangle& t = source_.mesh.triangles()[*g];
           Vec2 c[3];
-          for (int k = 0; k < 3; ++k) c[k] = t[k] == v ? p : uv_.at(t[k]);
+          for (int k = 0; k < 3; ++k) c[k] = triangle_[*g][k] == i ? p : point_[triangle_[*g][k]];
           const auto b = barycentric(q, c[0], c[1], c[2]);
           const double low = std::min({b[0], b[1], b[2]});
           if (low > score) score = low, best = *g, weights = b;
         }
         weights = clamped(weights);
         // The image lies in the moved triangle: v's position enters through its weight.
-        m.remapped.push_back({w, {image_in(source_, best, weights, 1 / scale_), best}});
-        for (int g : target_.mesh.faces_of(w)) touched.push_back(g);
+        m.remapped.push_back({w, {image_in(source_, face_[best], weights, 1 / scale_), best}});
+        for (int g : target_ring_[w]) touched.push_back(g);
       }
-    }
     std::sort(m.remapped.begin(), m.remapped.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
     std::sort(touched.begin(), touched.end());
     touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
     double e = 0;
-    for (int f : faces) e += source_energy(f, v, &m.image);
-    for (int g : touched)
-      if (back_shape_.count(g)) e += scale_ * scale_ * target_energy(g, m.remapped);
+    for (int f : faces) e += source_energy(f, i, &m.image);
+    for (int g : touched) e += scale_ * scale_ * target_energy(g, m.remapped);
     m.energy = e;
     return m;
   }
 
   void apply(int v, const Move& m) {
-    uv_[v] = m.point;
-    image_[v] = m.image;
-    for (int f : ring(v)) host_.erase(f);
+    const int i = local_.at(v);
+    uv_[v] = point_[i] = m.point;
+    image_[i] = m.image;
+    for (int f : ring_[i]) host_[f].clear();
     for (const auto& [w, remap] : m.remapped) {
       back_image_[w] = remap.image;
       host_[remap.host].push_back(w);
@@ -163,49 +183,64 @@ class PatchEnergy {
   const std::unordered_map<int, Vec2>& uv() const { return uv_; }
 
  private:
-  // v's triangles in this patch (a vertex on a path has triangles in two).
-  const std::vector<int>& ring(int v) const { return ring_.at(v); }
+  // The vertices of a side's triangles, each once, in index order.
+  static std::vector<int> sorted_corners(const PartitionSide& side, const std::vector<int>& faces) {
+    std::vector<int> corners;
+    for (int f : faces) corners.insert(corners.end(), side.mesh.triangles()[f].begin(), side.mesh.triangles()[f].end());
+    std::sort(corners.begin(), corners.end());
+    corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+    return corners;
+  }
 
   static Image locate(const PatchLocator& locator, const PartitionSide& side, const Vec2& p, double scale) {
     const auto [face, w] = locator.locate(p);
     return image_in(side, face, w, scale);
   }
 
-  double source_energy(int f, int v, const Image* q) const {
-    const Triangle& t = source_.mesh.triangles()[f];
+  // Local triangle f's energy, local vertex i's image replaced by q (none when i < 0).
+  double source_energy(int f, int i, const Image* q) const {
     const Image* image[3];
-    for (int k = 0; k < 3; ++k) image[k] = t[k] == v ? q : &image_.at(t[k]);
-    return triangle_energy(shape_.at(f), image);
+    for (int k = 0; k < 3; ++k) image[k] = triangle_[f][k] == i ? q : &image_[triangle_[f][k]];
+    return triangle_energy(shape_[f], image);
   }
 
   double target_energy(int g, const std::vector<std::pair<int, Remap>>& remapped) const {
-    const Triangle& t = target_.mesh.triangles()[g];
     const Image* image[3];
     for (int k = 0; k < 3; ++k) {
-      const Remap* remap = find_remapped(remapped, t[k]);
-      image[k] = remap ? &remap->image : &back_image_.at(t[k]);
+      const Remap* remap = find_remapped(remapped, back_triangle_[g][k]);
+      image[k] = remap ? &remap->image : &back_image_[back_triangle_[g][k]];
     }
-    return triangle_energy(back_shape_.at(g), image);
+    return triangle_energy(back_shape_[g], image);
   }
 
-  double signed_area(int f, int v, const Vec2& p) const {
-    const Triangle& t = source_.mesh.triangles()[f];
+  double signed_area(int f, int i, const Vec2& p) const {
     Vec2 c[3];
-    for (int k = 0; k < 3; ++k) c[k] = t[k] == v ? p : uv_.at(t[k]);
+    for (int k = 0; k < 3; ++k) c[k] = triangle_[f][k] == i ? p : point_[triangle_[f][k]];
     const Vec2 a = c[1] - c[0], b = c[2] - c[0];
     return 0.5 * (a.x() * b.y() - a.y() * b.x());
   }
 
   const PartitionSide& source_;
-  std::unordered_map<int, Vec2>& uv_;
+  std::unordered_map<int, Vec2>& uv_;  // kept up to date for the path slides
   const PartitionSide& target_;
-  const std::unordered_map<int, Vec2>& target_uv_;
   double scale_;
   double orientation_ = 1;
-  std::unordered_map<int, Shape> shape_, back_shape_;
-  std::unordered_map<int, std::vector<int>> ring_;  // per vertex: its triangles in this patch
-  std::unordered_map<int, Image> image_, back_image_;
-  std::unordered_map<int, std::vector<int>> host_;  // source triangle -> target vertices inside it
+  // The source's side of the patch, local: vertices, their mesh index, canonical point and image.
+  std::vector<int> vertex_;
+  std::unordered_map<int, int> local_;
+  std::vector<Vec2> point_;
+  std::vector<Image> image_;
+  std::vector<int> face_;                     // per local triangle: its index in the mesh
+  std::vector<std::array<int, 3>> triangle_;  // and its local corners
+  std::vector<Shape> shape_;
+  std::vector<std::vector<int>> ring_;  // per local vertex: its local triangles
+  std::vector<std::vector<int>> host_;  // per local triangle: the local target vertices inside it
+  // The target's side, local.
+  std::vector<Vec2> target_point_;
+  std::vector<Image> back_image_;
+  std::vector<std::array<int, 3>> back_triangle_;
+  std::vector<Shape> back_shape_;
+  std::vector<std::vector<int>> target_ring_;  // per local target vertex: its local target triangles
   std::unique_ptr<PatchLocator> target_locator_;
 };
 
