@@ -153,7 +153,11 @@ options:
                      consistent parameterization in one pass, with carried
                      guides, and with carried guides and B aligned to A; the
                      optimization is local, so with few features restarts
-                     find better maps.
+                     find better maps. The direct map of a pair without
+                     --features and without holes restarts from K different
+                     automatic first pairs (spread over A): between
+                     different shapes they pair the surfaces' parts quite
+                     differently, so try 4 or more.
                      consistent: compute the set K times (seed N + k) and keep
                      the one whose maps keep most of each input's own
                      efficiency (with few features a run can twist one

@@ -4,6 +4,7 @@
 // exact at the features and inverts its reverse.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <set>
 #include <string>
@@ -232,6 +233,36 @@ TEST(HigherGenusMap, BalancedPatchesLowerTheMediansOfDifferentShapes) {
   expect_exact_features(r, a, b);
   EXPECT_LT(round_trip(a, b, r.a_to_b, r.b_on_a), kRoundTrip);
   EXPECT_LT(round_trip(b, a, r.b_to_a, r.a_on_b), kRoundTrip);
+}
+
+// Without features, restarts start the partition from other spread first
+// pairs and keep the least distorted map: kitten - rocker arm's third start
+// pairs the surfaces far better (summed medians measured 22.0, 20.2, 14.3;
+// folded samples 1,723 -> 686). Given features, there is no first pair to
+// vary and one map is computed.
+TEST(HigherGenusMap, RestartsWithoutFeaturesKeepTheLeastDistortedStart) {
+  const TriangleMesh a = read_mesh(shared_mesh("higher-genus/kitten.off"));
+  const TriangleMesh b = read_mesh(shared_mesh("higher-genus/rocker-arm.obj"));
+  IntersurfaceOptions options;
+  options.restarts = 3;
+  const IntersurfaceResult r = intersurface_map(a, b, {}, options);
+  const auto median = [](const IntersurfaceResult& x) {
+    return x.distortion_a_to_b.median_symmetric_dirichlet + x.distortion_b_to_a.median_symmetric_dirichlet;
+  };
+  ASSERT_EQ(r.restart_median_dirichlet.size(), 3u);
+  const auto& medians = r.restart_median_dirichlet;
+  EXPECT_DOUBLE_EQ(median(r), *std::min_element(medians.begin(), medians.end()));
+  EXPECT_LT(median(r), 0.8 * medians[0]);
+  EXPECT_LT(r.distortion_a_to_b.flipped + r.distortion_b_to_a.flipped, r.restart_flipped[0]);
+  expect_valid_points(r.a_to_b, b);
+  expect_valid_points(r.b_to_a, a);
+  expect_exact_features(r, a, b);
+  EXPECT_LT(round_trip(a, b, r.a_to_b, r.b_on_a), kRoundTrip);
+
+  const TriangleMesh torus = read_mesh(shared_mesh("higher-genus/torus.obj"));
+  const TriangleMesh knot = read_mesh(shared_mesh("higher-genus/knot.obj"));
+  const IntersurfaceResult given = intersurface_map(torus, knot, {{0, 0}}, options);
+  EXPECT_TRUE(given.restart_median_dirichlet.empty());
 }
 
 // A mesh and a copy with its vertices listed in another order: the same
