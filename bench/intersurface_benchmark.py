@@ -17,6 +17,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "addon"))
 from consistent_maps import _native  # noqa: E402
 
 HIGHER = MESHES / "higher-genus"
+RESTARTS = 4  # the pairs without features again, from this many automatic first pairs
 
 
 def axis_extremes(path):
@@ -99,10 +100,14 @@ def main():
              ("cup", "skull")]
     files = {p.stem: p for p in HIGHER.iterdir()}
     with tempfile.TemporaryDirectory() as tmp:
-        for a, b in pairs:
-            result = run_cmaps("intersurface", str(files[a]), str(files[b]), "-o", tmp + "/out")
-            lines.append(row(f"{a} - {b}", result, "", medians(files[a], files[b], tmp + "/out")))
-            print(lines[-1], flush=True)
+        for restarts in (1, RESTARTS):
+            for a, b in pairs:
+                result = run_cmaps("intersurface", str(files[a]), str(files[b]), "-o", tmp + "/out", "--restarts",
+                                   str(restarts))
+                note = f" {restarts} restarts, summed medians " + " / ".join(
+                    f"{m:.1f}" for m in result["restart_median_dirichlet"]) if restarts > 1 else ""
+                lines.append(row(f"{a} - {b}", result, note, medians(files[a], files[b], tmp + "/out")))
+                print(lines[-1], flush=True)
         for a, b in [("feline", "cup"), ("feline", "skull")]:
             features = write_features(tmp, zip(axis_extremes(files[a]), axis_extremes(files[b])))
             result = run_cmaps("intersurface", str(files[a]), str(files[b]), "--features", features, "-o",
