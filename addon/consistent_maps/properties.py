@@ -46,8 +46,8 @@ class CM_Settings(bpy.types.PropertyGroup):
     restarts: IntProperty(name="Restarts", default=1, min=1, max=16,
                           description="Compute several objects this many times (other random seeds) and keep the "
                                       "best: with few features a run can twist one object's map around them. A "
-                                      "pair mapped onto each other without features tries this many starts, "
-                                      "which pair the shapes' parts differently")
+                                      "pair mapped onto each other without features optimizes this many of its "
+                                      "best first pairs, which pair the shapes' parts differently")
     align: BoolProperty(name="Align to First", default=False,
                         description="Refit every object's map towards the first complete object's where that "
                                     "distorts the map between them less: poses of one shape slide less between "

@@ -46,10 +46,11 @@ const char* const kUsage = R"(usage:
   cmaps consistent IN IN ... --features FILE -o DIR [--remesh N] [--grid N] [--first K] [--restarts K]
                    [--align] [--seed N] [--effort 0|1|2] [--threads N] [--json]
   cmaps intersurface A B [--features FILE] -o DIR [--method auto|sphere|partition] [--optimize R]
-                     [--cross-sweeps N] [--restarts K] [--seed N] [--effort 0|1|2] [--threads N] [--json]
+                     [--cross-sweeps N] [--restarts K] [--starts S] [--seed N] [--effort 0|1|2] [--threads N]
+                     [--json]
   cmaps transfer SOURCE TARGET [--features FILE] -o OUT.obj [--positions] [--method auto|sphere|partition]
-                 [--optimize R] [--cross-sweeps N] [--restarts K] [--seed N] [--effort 0|1|2] [--threads N]
-                 [--json]
+                 [--optimize R] [--cross-sweeps N] [--restarts K] [--starts S] [--seed N] [--effort 0|1|2]
+                 [--threads N] [--json]
   cmaps --help | --version
 
 commands:
@@ -132,6 +133,14 @@ options:
                      map's vertices moving across the partition's paths
                      (0..10000, default 20; 0 = the paths stay walls; more
                      sweeps move paths farther, slowly)
+  --starts S         intersurface, transfer: the direct map of a pair without
+                     --features and without holes pairs the surfaces' handles
+                     and parts as its automatic first pair decides (A's
+                     vertex farthest from its centroid and B's nearest in
+                     A's frame, or another of A's spread by farthest-point
+                     sampling): S first pairs are each mapped without
+                     optimization and the least distorted one optimized
+                     (1..100, default 4; JSON: start_median_dirichlet)
   --method M         intersurface, transfer (genus 0): map through the common
                      sphere, directly through a consistent partition as for
                      genus >= 1, or auto (default): both, keeping the less
@@ -154,10 +163,8 @@ options:
                      guides, and with carried guides and B aligned to A; the
                      optimization is local, so with few features restarts
                      find better maps. The direct map of a pair without
-                     --features and without holes restarts from K different
-                     automatic first pairs (spread over A): between
-                     different shapes they pair the surfaces' parts quite
-                     differently, so try 4 or more.
+                     --features and without holes is optimized from the K
+                     least distorted of its --starts first pairs.
                      consistent: compute the set K times (seed N + k) and keep
                      the one whose maps keep most of each input's own
                      efficiency (with few features a run can twist one
@@ -186,8 +193,9 @@ struct Arguments {
   std::string features, targets, refined_mesh;  // constrained only (features: consistent too)
   int remesh = 0, grid = 64, first = -1;        // consistent only
   bool remesh_given = false, grid_given = false, first_given = false;
-  int optimize = 2, restarts = 1, cross_sweeps = 20;  // optimize, cross_sweeps: intersurface and transfer only
-  bool optimize_given = false, restarts_given = false, cross_sweeps_given = false;
+  // optimize, cross_sweeps, starts: intersurface and transfer only
+  int optimize = 2, restarts = 1, cross_sweeps = 20, starts = 4;
+  bool optimize_given = false, restarts_given = false, cross_sweeps_given = false, starts_given = false;
   std::optional<cmaps::IntersurfaceMethod> method;  // intersurface and transfer only
   std::uint64_t seed = 1;
   int effort = 1;
@@ -235,6 +243,8 @@ Arguments parse(const std::vector<std::string>& args) {
     else if (arg == "--optimize") a.optimize = int(parse_integer(arg, value(), 0, 100)), a.optimize_given = true;
     else if (arg == "--cross-sweeps")
       a.cross_sweeps = int(parse_integer(arg, value(), 0, 10000)), a.cross_sweeps_given = true;
+    else if (arg == "--starts")
+      a.starts = int(parse_integer(arg, value(), 1, 100)), a.starts_given = true;
     else if (arg == "--restarts") a.restarts = int(parse_integer(arg, value(), 1, 100)), a.restarts_given = true;
     else if (arg == "--method") {
       const std::string& name = value();
@@ -264,6 +274,8 @@ Arguments parse(const std::vector<std::string>& args) {
     throw UsageError(a.command + " takes no --optimize (only intersurface and transfer do)");
   if (a.cross_sweeps_given && a.command != "intersurface" && a.command != "transfer")
     throw UsageError(a.command + " takes no --cross-sweeps (only intersurface and transfer do)");
+  if (a.starts_given && a.command != "intersurface" && a.command != "transfer")
+    throw UsageError(a.command + " takes no --starts (only intersurface and transfer do)");
   if (a.restarts_given && a.command != "intersurface" && a.command != "transfer" && a.command != "consistent")
     throw UsageError(a.command + " takes no --restarts (only consistent, intersurface and transfer do)");
   if (a.method && a.command != "intersurface" && a.command != "transfer")
@@ -864,6 +876,7 @@ cmaps::IntersurfaceOptions intersurface_options(const Arguments& args) {
   if (args.optimize == 0) options.correspondence_weight = 0;  // the plain composition
   options.cross_sweeps = args.cross_sweeps;
   options.restarts = args.restarts;
+  options.starts = args.starts;
   options.method = args.method.value_or(cmaps::IntersurfaceMethod::automatic);
   return options;
 }
@@ -933,6 +946,7 @@ void run_intersurface(const Arguments& args, Outcome& out) {
       .add("restart_dirichlet", result.restart_dirichlet)
       .add("restart_median_dirichlet", result.restart_median_dirichlet)
       .add_json("restart_flipped", JsonObject::array(result.restart_flipped))
+      .add("start_median_dirichlet", result.start_median_dirichlet)
       .add("seconds_partition", result.seconds_partition)
       .add("seconds_parameterize", result.seconds_parameterize)
       .add("seconds_optimize", result.seconds_optimize)

@@ -530,7 +530,7 @@ std::pair<py::array_t<std::int32_t>, py::array_t<double>> to_numpy(const std::ve
 
 py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, const py::handle& pairs_data, int grid,
                           int optimize, int restarts, bool corner_images, int balance_rounds, int cross_sweeps,
-                          const std::string& method,
+                          int starts, const std::string& method,
                           std::uint64_t seed, int effort, int threads, const py::object& progress) {
   cmaps::IntersurfaceOptions options;
   const std::optional<cmaps::IntersurfaceMethod> chosen = cmaps::parse_method(method);
@@ -545,6 +545,8 @@ py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, co
   if (optimize < 0) raise(PyExc_ValueError, "optimize must be at least 0, got " + std::to_string(optimize));
   if (restarts < 1) raise(PyExc_ValueError, "restarts must be at least 1, got " + std::to_string(restarts));
   options.restarts = restarts;
+  if (starts < 1) raise(PyExc_ValueError, "starts must be at least 1, got " + std::to_string(starts));
+  options.starts = starts;
   options.optimize_rounds = optimize;
   if (optimize == 0) options.correspondence_weight = 0;  // the plain composition
   options.sphere = sphere_options(seed, effort, threads, progress);
@@ -594,6 +596,7 @@ py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, co
   d["restart_dirichlet"] = to_numpy(result.restart_dirichlet);
   d["restart_median_dirichlet"] = to_numpy(result.restart_median_dirichlet);
   d["restart_flipped"] = py::array_t<int>(result.restart_flipped.size(), result.restart_flipped.data());
+  d["start_median_dirichlet"] = to_numpy(result.start_median_dirichlet);
   d["median_symmetric_dirichlet"] = py::make_tuple(ab.median_symmetric_dirichlet, ba.median_symmetric_dirichlet);
   d["seconds"] = seconds;
   d["base_vertices"] = result.base_vertices;
@@ -996,7 +999,7 @@ PYBIND11_MODULE(_native, m) {
   m.def("intersurface_map", &intersurface_map, py::arg("mesh_a"), py::arg("mesh_b"),
         py::arg("feature_pairs") = py::list(), py::kw_only(), py::arg("grid") = 64, py::arg("optimize") = 2,
         py::arg("restarts") = 1, py::arg("corner_images") = false, py::arg("balance_rounds") = 4,
-        py::arg("cross_sweeps") = 20,
+        py::arg("cross_sweeps") = 20, py::arg("starts") = 4,
         py::arg("method") = "auto", py::arg("seed") = 1, py::arg("effort") = 1, py::arg("threads") = 2, py::arg("progress") = py::none(),
         "Inter-surface map between two meshes of equal genus, closed or with as many holes (genus >= 1:\n"
         "through a consistent partition into triangular patches, 'base_vertices' and 'base_triangles' of its\n"
@@ -1024,9 +1027,10 @@ PYBIND11_MODULE(_native, m) {
         "layout k % 3 of single pass, carried guides, aligned; seed + k // 3); the least distorted is returned\n"
         "(the lowest summed median; medians within 5 % of each other: the fewer folded samples, 'flipped', if\n"
         "the counts differ by over 0.5 % of the triangles); the direct map (any genus) is computed from A's\n"
-        "side and from B's side, for a pair without feature_pairs and holes `restarts` times from different\n"
-        "automatic first pairs (then also reported in 'restart_*'; between different shapes they differ\n"
-        "widely: try 4 or more), and method 'auto' computes both maps, each time keeping the less distorted\n"
+        "side and from B's side, for a pair without feature_pairs and holes from the least distorted of\n"
+        "`starts` automatic first pairs each mapped without optimization ('start_median_dirichlet': their\n"
+        "summed medians; with restarts > 1 that many of them optimized, also reported in 'restart_*'),\n"
+        "and method 'auto' computes both maps, each time keeping the less distorted\n"
         "(method 'auto': a tie that folds do not break goes to the direct map);\n"
         "'refitted' (genus 0): whether A's map, then B's, was refitted against the other's (kept only when\n"
         "that lowers the medians);\n"
