@@ -399,6 +399,10 @@ def test_cli_usage(cmaps_binary, tmp_path):
     result = run(cmaps_binary, "consistent", SPOT, SPHERE, "-o", tmp_path / "c", "--cross-sweeps", "1")
     assert result.returncode == 2 and "consistent takes no --cross-sweeps (only intersurface and transfer do)" \
         in result.stderr
+    result = run(cmaps_binary, "intersurface", SPOT, SPHERE, "-o", tmp_path / "out", "--starts", "0")
+    assert result.returncode == 2 and "--starts expects an integer in [1, 100], got '0'" in result.stderr
+    result = run(cmaps_binary, "sphere", SPOT, "-o", tmp_path / "s.obj", "--starts", "2")
+    assert result.returncode == 2 and "sphere takes no --starts (only intersurface and transfer do)" in result.stderr
     result = run(cmaps_binary, "intersurface", SPOT, SPHERE, "-o", tmp_path / "out", "--restarts", "0")
     assert result.returncode == 2 and "--restarts expects an integer in [1, 100], got '0'" in result.stderr
     result = run(cmaps_binary, "sphere", SPOT, "-o", tmp_path / "s.obj", "--restarts", "2")
