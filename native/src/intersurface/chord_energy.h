@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "intersurface/consistent_partition.h"
+#include "intersurface/patch_locator.h"
 
 namespace cmaps {
 
@@ -75,16 +76,6 @@ inline double triangle_energy(const Shape& s, const Image* image[3]) {
     dirichlet += s.cot[i] * (image[(i + 2) % 3]->position - image[(i + 1) % 3]->position).squaredNorm();
   dirichlet /= 2 * s.area;
   return s.area * dirichlet * (1 + (s.area / aq) * (s.area / aq));
-}
-
-// Barycentric coordinates of p in the 2D triangle (a, b, c); all -1 when degenerate.
-inline std::array<double, 3> barycentric(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
-                                         const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
-  const Eigen::Vector2d e = b - a, d = c - a, q = p - a;
-  const double det = e.x() * d.y() - e.y() * d.x();
-  if (std::abs(det) < 1e-300) return {-1, -1, -1};
-  const double s = (q.x() * d.y() - q.y() * d.x()) / det, t = (e.x() * q.y() - e.y() * q.x()) / det;
-  return {1 - s - t, s, t};
 }
 
 // The weights clamped to the triangle and normalized.

@@ -220,17 +220,10 @@ CrossPatchMap::Move CrossPatchMap::trial(int v, const Vec2& q, const Ring& ring)
   // B's vertices inside the ring: the ring triangle holding each with v at q.
   std::vector<int> touched;
   for (const auto& [w, at] : ring.hosted) {
-    RefinedPoint best;
-    double score = -kChordInf;
-    for (auto g = faces.begin(); g != faces.end() && score <= kSurelyInside; ++g) {
-      std::array<Vec2, 3> c;
-      corners(*g, c);
-      const auto weights = barycentric(at, c[0], c[1], c[2]);
-      const double low = std::min({weights[0], weights[1], weights[2]});
-      if (low > score) score = low, best = {*g, weights};
-    }
-    if (score < -kInside) return m;  // outside the ring: a development gone wrong
-    best.weights = clamped(best.weights);
+    Holder holder;
+    find_holder(at, faces.begin(), faces.end(), corners, holder);
+    if (holder.score < -kInside) return m;  // outside the ring: a development gone wrong
+    const RefinedPoint best{holder.face, clamped(holder.weights)};
     m.rehosted.push_back({w, {best, image_in(a_, best.face, best.weights, 1 / scale_)}});
     for (int g : b_.mesh.faces_of(w)) touched.push_back(g);
   }

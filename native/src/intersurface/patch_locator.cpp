@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "consistent_maps/errors.h"
 
@@ -9,16 +10,6 @@ namespace cmaps {
 namespace {
 
 const double kHeight = std::sqrt(3.0) / 2;  // of the canonical triangle (0, 0), (1, 0), (1/2, kHeight)
-
-// Barycentric coordinates of p in the 2D triangle c.
-std::array<double, 3> barycentric(const Vec2& p, const std::array<Vec2, 3>& c) {
-  const Vec2 b = c[1] - c[0], d = c[2] - c[0], q = p - c[0];
-  const double det = b.x() * d.y() - b.y() * d.x();
-  if (std::abs(det) < 1e-300) return {-1, -1, -1};
-  const double s = (q.x() * d.y() - q.y() * d.x()) / det;
-  const double t = (b.x() * q.y() - b.y() * q.x()) / det;
-  return {1 - s - t, s, t};
-}
 
 }  // namespace
 
@@ -42,23 +33,20 @@ PatchLocator::PatchLocator(const PartitionSide& side, const std::unordered_map<i
 
 std::pair<int, std::array<double, 3>> PatchLocator::locate(const Vec2& p) const {
   const auto [x, y] = cell(p);
-  int best = -1;
-  std::array<double, 3> weights{};
-  double score = -1e300;
-  const auto test = [&](int i) {
-    const auto w = barycentric(p, corners_[i]);
-    const double m = std::min({w[0], w[1], w[2]});
-    if (m > score) score = m, best = i, weights = w;
-  };
-  for (auto i = buckets_[y * cells_ + x].begin(); i != buckets_[y * cells_ + x].end() && score <= kSurelyInside; ++i)
-    test(*i);
-  if (score < -1e-9)
-    for (int i = 0; i < int(faces_.size()); ++i) test(i);
-  if (best < 0) throw Error("internal error: point outside every patch triangle");
+  const auto corners = [&](int i, std::array<Vec2, 3>& c) { c = corners_[i]; };
+  Holder best;
+  const std::vector<int>& bucket = buckets_[y * cells_ + x];
+  find_holder(p, bucket.begin(), bucket.end(), corners, best);
+  if (best.score < -1e-9) {
+    std::vector<int> all(faces_.size());
+    std::iota(all.begin(), all.end(), 0);
+    find_holder(p, all.begin(), all.end(), corners, best);
+  }
+  if (best.face < 0) throw Error("internal error: point outside every patch triangle");
   double sum = 0;
-  for (double& w : weights) sum += (w = std::max(0.0, w));
-  for (double& w : weights) w = sum > 0 ? w / sum : 1.0 / 3;
-  return {faces_[best], weights};
+  for (double& w : best.weights) sum += (w = std::max(0.0, w));
+  for (double& w : best.weights) w = sum > 0 ? w / sum : 1.0 / 3;
+  return {faces_[best.face], best.weights};
 }
 
 std::pair<int, int> PatchLocator::cell(const Vec2& p) const {

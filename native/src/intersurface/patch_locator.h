@@ -3,7 +3,10 @@
 // laid out inside the unit square will do (corner_points: the refined faces of
 // one input triangle in a chart of it).
 #pragma once
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <limits>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -15,6 +18,36 @@ namespace cmaps {
 // A point this far inside one triangle of an embedding (in barycentric
 // weight) is inside no other: a search for the triangle holding it can stop.
 constexpr double kSurelyInside = 1e-12;
+
+// Barycentric coordinates of p in the 2D triangle (a, b, c); all -1 when degenerate.
+inline std::array<double, 3> barycentric(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
+  const Vec2 e = b - a, d = c - a, q = p - a;
+  const double det = e.x() * d.y() - e.y() * d.x();
+  if (std::abs(det) < 1e-300) return {-1, -1, -1};
+  const double s = (q.x() * d.y() - q.y() * d.x()) / det, t = (e.x() * q.y() - e.y() * q.x()) / det;
+  return {1 - s - t, s, t};
+}
+
+// The triangle of an embedding that a point lies least outside of: the
+// largest smallest barycentric weight (`score`), the first of equals.
+struct Holder {
+  int face = -1;
+  std::array<double, 3> weights{};
+  double score = -std::numeric_limits<double>::infinity();
+};
+
+// Scans faces [first, last) in order, each laid out by corners(f, c), into
+// `best`, until one surely holds p.
+template <class Iterator, class Corners>
+void find_holder(const Vec2& p, Iterator first, Iterator last, const Corners& corners, Holder& best) {
+  for (; first != last && best.score <= kSurelyInside; ++first) {
+    std::array<Vec2, 3> c;
+    corners(*first, c);
+    const std::array<double, 3> w = barycentric(p, c[0], c[1], c[2]);
+    const double low = std::min({w[0], w[1], w[2]});
+    if (low > best.score) best = {*first, w, low};
+  }
+}
 
 class PatchLocator {
  public:

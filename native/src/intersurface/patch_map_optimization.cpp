@@ -138,25 +138,18 @@ class PatchEnergy {
     const std::vector<int>& faces = ring_[i];
     for (int f : faces)
       if (orientation_ * signed_area(f, i, p) <= 0) return m;
+    const auto corners = [&](int f, std::array<Vec2, 3>& c) {
+      for (int k = 0; k < 3; ++k) c[k] = triangle_[f][k] == i ? p : point_[triangle_[f][k]];
+    };
     m.image = locate(*target_locator_, target_, p, scale_);
     // Target vertices inside the ring: their source triangle with v at p.
     std::vector<int> touched;
     for (int f : faces)
       for (int w : host_[f]) {
-        const Vec2& q = target_point_[w];
-        int best = -1;
-        std::array<double, 3> weights{};
-        double score = -kChordInf;
-        for (auto g = faces.begin(); g != faces.end() && score <= kSurelyInside; ++g) {
-          Vec2 c[3];
-          for (int k = 0; k < 3; ++k) c[k] = triangle_[*g][k] == i ? p : point_[triangle_[*g][k]];
-          const auto b = barycentric(q, c[0], c[1], c[2]);
-          const double low = std::min({b[0], b[1], b[2]});
-          if (low > score) score = low, best = *g, weights = b;
-        }
-        weights = clamped(weights);
+        Holder best;
+        find_holder(target_point_[w], faces.begin(), faces.end(), corners, best);
         // The image lies in the moved triangle: v's position enters through its weight.
-        m.remapped.push_back({w, {image_in(source_, face_[best], weights, 1 / scale_), best}});
+        m.remapped.push_back({w, {image_in(source_, face_[best.face], clamped(best.weights), 1 / scale_), best.face}});
         for (int g : target_ring_[w]) touched.push_back(g);
       }
     std::sort(m.remapped.begin(), m.remapped.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
