@@ -36,27 +36,6 @@ def farthest_points(vertices, count):
     return chosen
 
 
-def dirichlet_densities(vertices, triangles, images):
-    """Per source triangle: the symmetric Dirichlet density (optimum 4) of the linear map onto the triangle of
-    its corners' images, the images scaled to the source's total area (the measure `cmaps` reports as a mean)."""
-    def areas(x):
-        return 0.5 * np.linalg.norm(np.cross(x[:, 1] - x[:, 0], x[:, 2] - x[:, 0]), axis=1)
-
-    def frames(x):  # each triangle's two edge vectors in an orthonormal frame of its plane
-        e1, e2 = x[:, 1] - x[:, 0], x[:, 2] - x[:, 0]
-        u = e1 / np.maximum(np.linalg.norm(e1, axis=1), 1e-300)[:, None]
-        w = np.cross(np.cross(e1, e2), u)
-        w /= np.maximum(np.linalg.norm(w, axis=1), 1e-300)[:, None]
-        return np.stack([np.stack([(e1 * u).sum(1), (e1 * w).sum(1)], 1),
-                         np.stack([(e2 * u).sum(1), (e2 * w).sum(1)], 1)], 2)
-
-    source, image = vertices[triangles], images[triangles]
-    image = image * np.sqrt(areas(source).sum() / areas(image).sum())
-    jacobian = frames(image) @ np.linalg.inv(frames(source))
-    determinant = np.maximum(np.abs(np.linalg.det(jacobian)), 1e-300)
-    return (jacobian ** 2).sum(axis=(1, 2)) * (1 + 1 / determinant ** 2)
-
-
 def diagonal(vertices):
     return float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0)))
 
