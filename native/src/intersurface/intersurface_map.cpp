@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <numeric>
 #include <optional>
 #include <string>
@@ -432,19 +433,28 @@ void map_partition(ConsistentPartition& partition, const ClosedMesh& closed_a, c
   result.seconds_measure = seconds_since(stage);
 }
 
-// The direct map through a consistent partition (every pair of genus >= 1;
-// genus 0 on request or to compare with the sphere). A pair given no
+// A pair's consistent partition for the direct map, as traced and with its
+// paths moved to balance the patches' areas (`retraced` paths moved), and
+// the holes' fans closing both meshes.
+struct PatchPartitions {
+  ClosedMesh closed_a, closed_b;
+  ConsistentPartition traced, balanced;
+  int retraced = 0;
+  double seconds_features = 0, seconds_partition = 0;
+};
+
+// The partitions of the pair (A's paths traced first). A pair given no
 // features and without holes starts from the pair of restart `start`.
-void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResult& result,
-                         const IntersurfaceOptions& options, int start, const ProgressCallback& progress) {
+PatchPartitions partition_pair(const TriangleMesh& a, const TriangleMesh& b, const IntersurfaceResult& result,
+                               const IntersurfaceOptions& options, int start, const ProgressCallback& progress) {
   auto stage = Clock::now();
-  const int given = int(result.features.size());
   std::vector<std::array<int, 2>> pairs;
   for (const FeaturePair& f : result.features) pairs.push_back({f.a, f.b});
   // Holes are closed by fans; paths keep cyclic orders by each mesh's own
   // orientation: B is turned like A (its input triangle indices stay, only
   // corner order flips).
-  const ClosedMesh closed_a = close_holes(a, /*any_genus=*/true), closed_b = close_holes(b, /*any_genus=*/true);
+  PatchPartitions made{close_holes(a, /*any_genus=*/true), close_holes(b, /*any_genus=*/true), {}, {}, 0, 0, 0};
+  const ClosedMesh &closed_a = made.closed_a, &closed_b = made.closed_b;
   if (pairs.empty() && closed_a.loops.empty()) {
     // A's vertex farthest from its centroid (or, restarting, another spread
     // vertex), and B's nearest to it with the centroids and areas matched
@@ -479,24 +489,41 @@ void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, Intersurf
       pairs.push_back(rim.centre);
     }
   }
-  result.seconds_features = seconds_since(stage);
+  made.seconds_features = seconds_since(stage);
 
   stage = Clock::now();
   if (progress && !progress(0.05, "partitioning")) throw Cancelled();
-  ConsistentPartition partition = consistent_partition(closed_a.mesh, b_like_a, pairs, result.genus, holes);
-  // The map through the partition as traced, and through one with its paths
-  // moved to balance the patches' areas (when any moved): the lower summed
-  // median distortion wins, as for genus 0's restarts. Balancing is an
-  // improvement the traced partition can do without: if it fails, that serves.
-  result.patch_area_ratio = patch_area_ratio(partition);
-  ConsistentPartition balanced = partition;
-  int retraced = 0;
+  made.traced = consistent_partition(closed_a.mesh, b_like_a, pairs, result.genus, holes);
+  // Balancing is an improvement the traced partition can do without: if it fails, that serves.
+  made.balanced = made.traced;
   try {
-    retraced = balance_patch_areas(balanced, options.balance_rounds).retraced;
+    made.retraced = balance_patch_areas(made.balanced, options.balance_rounds).retraced;
   } catch (const Error&) {
-    // retraced stays 0: the partition as traced serves
+    made.retraced = 0;
   }
-  result.seconds_partition = seconds_since(stage);
+  made.seconds_partition = seconds_since(stage);
+  return made;
+}
+
+// The direct map through a consistent partition (every pair of genus >= 1;
+// genus 0 on request or to compare with the sphere): through the partition
+// as traced and through the balanced one (when any path moved), the lower
+// summed median distortion kept, as for genus 0's restarts. `partitions`,
+// when given, holds the pair's partitions from `start` (see partition_pair),
+// else they are traced and, with `keep`, kept there too (the maps refine
+// their own copies).
+void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResult& result,
+                         const IntersurfaceOptions& options, int start, const ProgressCallback& progress,
+                         std::shared_ptr<const PatchPartitions>* partitions = nullptr) {
+  if (partitions && !*partitions)
+    *partitions = std::make_shared<const PatchPartitions>(partition_pair(a, b, result, options, start, progress));
+  PatchPartitions made = partitions ? **partitions : partition_pair(a, b, result, options, start, progress);
+  const ClosedMesh &closed_a = made.closed_a, &closed_b = made.closed_b;
+  const int given = int(result.features.size()), retraced = made.retraced;
+  ConsistentPartition partition = std::move(made.traced), balanced = std::move(made.balanced);
+  result.seconds_features = made.seconds_features;
+  result.seconds_partition = made.seconds_partition;
+  result.patch_area_ratio = patch_area_ratio(partition);
   map_partition(partition, closed_a, closed_b, a, b, result, options, slice(progress, 0.6, retraced ? 0.8 : 1));
   if (retraced > 0) {
     IntersurfaceResult moved = result;
@@ -717,13 +744,22 @@ void keep_less_distorted(IntersurfaceResult& first, const std::exception_ptr& fi
 // traced on A first and A's embedding moves against B's, so the two differ
 // (sets/cactus 2 -> 0, 10 features: 1.1 % off the truth one way, 0.6 % the
 // other), and the map kept does not depend on which mesh is called A.
+// The partitions of one start from both sides (see map_through_patches).
+struct StartPartitions {
+  int start = -1;
+  std::array<std::shared_ptr<const PatchPartitions>, 2> sides;  // from A's side, from B's side
+};
+
 void map_directly_from(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResult& result,
-                       const IntersurfaceOptions& options, int start, const ProgressCallback& progress) {
+                       const IntersurfaceOptions& options, int start, const ProgressCallback& progress,
+                       StartPartitions* partitions = nullptr) {
   IntersurfaceResult backward = result;
   exchange_sides(backward);
+  const auto side = [&](int k) { return partitions ? &partitions->sides[k] : nullptr; };
   const auto [forward_error, backward_error] = run_side_by_side(
-      progress, 0.5, [&](const ProgressCallback& part) { map_through_patches(a, b, result, options, start, part); },
-      [&](const ProgressCallback& part) { map_through_patches(b, a, backward, options, start, part); });
+      progress, 0.5,
+      [&](const ProgressCallback& part) { map_through_patches(a, b, result, options, start, part, side(0)); },
+      [&](const ProgressCallback& part) { map_through_patches(b, a, backward, options, start, part, side(1)); });
   if (!backward_error) exchange_sides(backward);
   keep_less_distorted(result, forward_error, backward, backward_error, a.triangles.size() + b.triangles.size());
 }
@@ -731,7 +767,9 @@ void map_directly_from(const TriangleMesh& a, const TriangleMesh& b, Intersurfac
 // Direct maps from each of `starts` (see map_through_patches), the least
 // distorted kept in `result` and each one's summed mean, median and folds
 // appended to `tried` (in order, with its start). A start that fails is
-// skipped; when all fail, the first error is thrown.
+// skipped; when all fail, the first error is thrown. `partitions` holds the
+// partitions of its start when that is among `starts` (they are not traced
+// again), and is left holding those of the start kept.
 struct StartTrials {
   std::vector<int> starts;
   std::vector<double> energies, medians;
@@ -740,15 +778,17 @@ struct StartTrials {
 
 void map_directly_best_of(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResult& result,
                           const IntersurfaceOptions& options, const std::vector<int>& starts, StartTrials& tried,
-                          const ProgressCallback& progress) {
+                          StartPartitions& partitions, const ProgressCallback& progress) {
   IntersurfaceResult best;
   std::exception_ptr error;
   bool found = false;
+  StartPartitions kept;
   for (std::size_t k = 0; k < starts.size(); ++k) {
     IntersurfaceResult map = result;
+    StartPartitions made = partitions.start == starts[k] ? partitions : StartPartitions{starts[k], {}};
     try {
       map_directly_from(a, b, map, options, starts[k],
-                        slice(progress, double(k) / starts.size(), (k + 1.0) / starts.size()));
+                        slice(progress, double(k) / starts.size(), (k + 1.0) / starts.size()), &made);
     } catch (const Cancelled&) {
       throw;
     } catch (const Error&) {
@@ -759,11 +799,13 @@ void map_directly_best_of(const TriangleMesh& a, const TriangleMesh& b, Intersur
     tried.energies.push_back(map.distortion_a_to_b.symmetric_dirichlet + map.distortion_b_to_a.symmetric_dirichlet);
     tried.medians.push_back(summed_median(map));
     tried.folds.push_back(summed_folds(map));
-    if (!found || less_distorted(map, best, a.triangles.size() + b.triangles.size())) best = std::move(map);
+    if (!found || less_distorted(map, best, a.triangles.size() + b.triangles.size()))
+      best = std::move(map), kept = std::move(made);
     found = true;
   }
   if (!found) std::rethrow_exception(error);
   result = std::move(best);
+  partitions = std::move(kept);
 }
 
 // The direct map. A pair given no features and without holes has an
@@ -785,13 +827,14 @@ void map_directly(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResu
   std::vector<int> starts(std::max(options.starts, options.restarts));
   std::iota(starts.begin(), starts.end(), 0);
   StartTrials screened;
+  StartPartitions partitions;  // the screened start kept: its optimization does not trace them again
   double screening = 0;
   if (options.optimize_rounds > 0 && int(starts.size()) > options.restarts) {
     IntersurfaceOptions quick = options;
     quick.optimize_rounds = 0;
     IntersurfaceResult ignored = result;
     screening = 0.4;
-    map_directly_best_of(a, b, ignored, quick, starts, screened, slice(progress, 0, screening));
+    map_directly_best_of(a, b, ignored, quick, starts, screened, partitions, slice(progress, 0, screening));
     // The least distorted of those left, options.restarts times (the tie
     // rule is no ordering to sort by).
     std::vector<int> left(screened.starts.size());
@@ -808,7 +851,7 @@ void map_directly(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResu
     }
   }
   StartTrials optimized;
-  map_directly_best_of(a, b, result, options, starts, optimized, slice(progress, screening, 1));
+  map_directly_best_of(a, b, result, options, starts, optimized, partitions, slice(progress, screening, 1));
   result.start_median_dirichlet = screened.medians;
   if (optimized.starts.size() > 1) {
     result.restart_dirichlet = std::move(optimized.energies);

@@ -116,10 +116,11 @@ class PatchEmbedding {
     }
     Eigen::SparseMatrix<double> matrix(n, n);
     matrix.setFromTriplets(entries.begin(), entries.end());
-    Eigen::SparseLU<Eigen::SparseMatrix<double>> solver;
-    solver.compute(matrix);
-    if (solver.info() != Eigen::Success) throw Error("internal error: a patch parameterization is singular");
-    const Eigen::MatrixXd x = solver.solve(rhs);
+    // Every round's weights are positive on the same edges: one ordering serves them all.
+    if (!analyzed_) solver_.analyzePattern(matrix), analyzed_ = true;
+    solver_.factorize(matrix);
+    if (solver_.info() != Eigen::Success) throw Error("internal error: a patch parameterization is singular");
+    const Eigen::MatrixXd x = solver_.solve(rhs);
     for (const auto& [v, i] : index_) uv_[v] = x.row(i).transpose();
   }
 
@@ -128,6 +129,8 @@ class PatchEmbedding {
   const std::vector<int>& faces_;
   std::unordered_map<int, Vec2>& uv_;
   std::unordered_map<int, int> index_;  // interior vertex -> unknown
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> solver_;
+  bool analyzed_ = false;
 };
 
 // Canonical points of one patch: its boundary by arc length, its interior
