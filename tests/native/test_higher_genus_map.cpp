@@ -280,6 +280,32 @@ TEST(HigherGenusMap, FirstPairsAreScreenedAndTheLeastDistortedOptimized) {
   EXPECT_THROW(intersurface_map(torus, knot, {}, none), InvalidInput);
 }
 
+// The screened start kept is optimized on the partitions its screening
+// traced, not traced again: exactly the map that start gives when every
+// start is optimized from scratch. eight - skull keeps its second start, so
+// partitions of the wrong start would show (the sweeps cut short: only
+// sameness counts here).
+TEST(HigherGenusMap, ScreenedStartIsOptimizedOnItsOwnPartitions) {
+  const TriangleMesh a = read_mesh(shared_mesh("higher-genus/eight.off"));
+  const TriangleMesh b = read_mesh(shared_mesh("higher-genus/skull.obj"));
+  IntersurfaceOptions quick;
+  quick.optimize_sweeps = 2;
+  quick.cross_sweeps = 2;
+  const IntersurfaceResult screened = intersurface_map(a, b, {}, quick);
+  IntersurfaceOptions every = quick;
+  every.restarts = 4;  // as many as the starts: each optimized, none screened
+  const IntersurfaceResult all = intersurface_map(a, b, {}, every);
+  ASSERT_EQ(screened.start_median_dirichlet.size(), 4u);
+  ASSERT_EQ(all.restart_median_dirichlet.size(), 4u);
+  EXPECT_TRUE(all.start_median_dirichlet.empty());
+  const std::vector<double>& unoptimized = screened.start_median_dirichlet;
+  const auto kept = std::min_element(unoptimized.begin(), unoptimized.end()) - unoptimized.begin();
+  ASSERT_EQ(kept, 1);
+  EXPECT_EQ(screened.distortion_a_to_b.median_symmetric_dirichlet + screened.distortion_b_to_a.median_symmetric_dirichlet,
+            all.restart_median_dirichlet[kept]);
+  EXPECT_EQ(screened.distortion_a_to_b.flipped + screened.distortion_b_to_a.flipped, all.restart_flipped[kept]);
+}
+
 // A mesh and a copy with its vertices listed in another order: the same
 // partition, so the map is the identity, an isometry without flips.
 TEST(HigherGenusMap, ReorderedCopyMapsOntoItself) {
