@@ -499,7 +499,7 @@ PatchPartitions partition_pair(const TriangleMesh& a, const TriangleMesh& b, con
   try {
     made.retraced = balance_patch_areas(made.balanced, options.balance_rounds).retraced;
   } catch (const Error&) {
-    made.retraced = 0;
+    // retraced stays 0: the partition as traced serves
   }
   made.seconds_partition = seconds_since(stage);
   return made;
@@ -508,10 +508,10 @@ PatchPartitions partition_pair(const TriangleMesh& a, const TriangleMesh& b, con
 // The direct map through a consistent partition (every pair of genus >= 1;
 // genus 0 on request or to compare with the sphere): through the partition
 // as traced and through the balanced one (when any path moved), the lower
-// summed median distortion kept, as for genus 0's restarts. `partitions`,
-// when given, holds the pair's partitions from `start` (see partition_pair),
-// else they are traced and, with `keep`, kept there too (the maps refine
-// their own copies).
+// summed median distortion kept, as for genus 0's restarts. With
+// `partitions`, the pair's partitions from `start` (see partition_pair) are
+// taken from there, or traced and left there when it is empty; the maps
+// refine copies of them.
 void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResult& result,
                          const IntersurfaceOptions& options, int start, const ProgressCallback& progress,
                          std::shared_ptr<const PatchPartitions>* partitions = nullptr) {
@@ -739,17 +739,18 @@ void keep_less_distorted(IntersurfaceResult& first, const std::exception_ptr& fi
   if (second_wins) first = std::move(second);
 }
 
-// The direct map through a partition, traced and optimized from A's side and
-// from B's side at once, the less distorted kept: the partition is
-// traced on A first and A's embedding moves against B's, so the two differ
-// (sets/cactus 2 -> 0, 10 features: 1.1 % off the truth one way, 0.6 % the
-// other), and the map kept does not depend on which mesh is called A.
 // The partitions of one start from both sides (see map_through_patches).
 struct StartPartitions {
   int start = -1;
   std::array<std::shared_ptr<const PatchPartitions>, 2> sides;  // from A's side, from B's side
 };
 
+// The direct map through a partition, traced and optimized from A's side and
+// from B's side at once, the less distorted kept: the partition is
+// traced on A first and A's embedding moves against B's, so the two differ
+// (sets/cactus 2 -> 0, 10 features: 1.1 % off the truth one way, 0.6 % the
+// other), and the map kept does not depend on which mesh is called A.
+// `partitions`: each side's partitions, as map_through_patches takes them.
 void map_directly_from(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResult& result,
                        const IntersurfaceOptions& options, int start, const ProgressCallback& progress,
                        StartPartitions* partitions = nullptr) {
@@ -764,18 +765,19 @@ void map_directly_from(const TriangleMesh& a, const TriangleMesh& b, Intersurfac
   keep_less_distorted(result, forward_error, backward, backward_error, a.triangles.size() + b.triangles.size());
 }
 
-// Direct maps from each of `starts` (see map_through_patches), the least
-// distorted kept in `result` and each one's summed mean, median and folds
-// appended to `tried` (in order, with its start). A start that fails is
-// skipped; when all fail, the first error is thrown. `partitions` holds the
-// partitions of its start when that is among `starts` (they are not traced
-// again), and is left holding those of the start kept.
+// Per start tried: the start, both directions' summed mean and median, and folds.
 struct StartTrials {
   std::vector<int> starts;
   std::vector<double> energies, medians;
   std::vector<int> folds;
 };
 
+// Direct maps from each of `starts` (see map_through_patches), the least
+// distorted kept in `result` and each one's summed mean, median and folds
+// appended to `tried` (in order, with its start). A start that fails is
+// skipped; when all fail, the first error is thrown. `partitions` holds the
+// partitions of its start when that is among `starts` (they are not traced
+// again), and is left holding those of the start kept.
 void map_directly_best_of(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResult& result,
                           const IntersurfaceOptions& options, const std::vector<int>& starts, StartTrials& tried,
                           StartPartitions& partitions, const ProgressCallback& progress) {
