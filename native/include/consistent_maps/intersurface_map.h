@@ -114,6 +114,11 @@ struct IntersurfaceOptions {
   // at most `sweeps` sweeps over the vertices. 0 keeps the plain composition.
   int optimize_rounds = 2;
   int optimize_sweeps = 20;
+  // Genus 0: the first round's sweeps follow smooth deformations of whole
+  // spherical caps, coarse to fine, which carry parts whose image is too small
+  // or too large as one piece (a tail squeezed into a rump) where moving one
+  // vertex at a time cannot (false: vertex moves only).
+  bool optimize_regions = true;
   // Genus 0: before that, A's spherical map is computed again with this
   // weight on its consistency with B's map, then B's with A's, each kept
   // only if the median energy drops (0: not at all). With neither, the

@@ -8,6 +8,8 @@
 #include <tuple>
 #include <unordered_map>
 
+#include "common/triangle_neighbours.h"
+
 namespace cmaps {
 namespace {
 
@@ -32,24 +34,7 @@ class Charts {
  public:
   Charts(const std::vector<Triangle>& triangles, const std::vector<std::array<int, 3>>& triangle_uvs,
          const std::vector<Uv>& uvs)
-      : triangles_(triangles), triangle_uvs_(triangle_uvs), uvs_(uvs), neighbours_(triangles.size(), {-1, -1, -1}) {
-    std::unordered_map<std::uint64_t, int> first;  // directed-less edge -> first triangle seen
-    const auto key = [](int p, int q) {
-      return (std::uint64_t(std::uint32_t(std::min(p, q))) << 32) | std::uint32_t(std::max(p, q));
-    };
-    for (int t = 0; t < int(triangles.size()); ++t)
-      for (int k = 0; k < 3; ++k) {
-        const auto [it, added] = first.emplace(key(triangles[t][k], triangles[t][(k + 1) % 3]), t);
-        if (!added && it->second != t) {
-          neighbours_[t][k] = it->second;
-          const int other = it->second;
-          for (int j = 0; j < 3; ++j)
-            if (neighbours_[other][j] < 0 && key(triangles[other][j], triangles[other][(j + 1) % 3]) ==
-                                                 it->first)
-              neighbours_[other][j] = t;
-        }
-      }
-  }
+      : triangles_(triangles), triangle_uvs_(triangle_uvs), uvs_(uvs), neighbours_(triangle_neighbours(triangles)) {}
 
   // The coordinates of corner vertex v as seen from triangle t.
   Uv at(int t, int v) const {

@@ -296,12 +296,14 @@ void optimize_composition(const TriangleMesh& a, ConstrainedResult& map_a, const
                                       {map_b, pb, fixed_b}})
     for (std::size_t t = map.triangles.size(); t < p.surface.triangles.size(); ++t)
       for (int v : p.surface.triangles[t]) fixed[v] = 1;
-  MapOptimizer optimizer({pa.surface, pa.sphere, fixed_a}, {pb.surface, pb.sphere, fixed_b}, options.sphere.threads);
+  MapOptimizer optimizer({pa.surface, a.triangles, pa.sphere, fixed_a}, {pb.surface, b.triangles, pb.sphere, fixed_b},
+                         options.sphere.threads);
   bool cancelled = false;
-  optimizer.optimize(options.optimize_rounds, options.optimize_sweeps, 1e-3, [&](double done) {
+  const auto going_on = [&](double done) {
     cancelled = progress && !progress(done, "optimizing the map");
     return !cancelled;
-  });
+  };
+  optimizer.optimize(options.optimize_rounds, options.optimize_sweeps, 1e-3, options.optimize_regions, going_on);
   if (cancelled) throw Cancelled();
   for (const auto& [p, map] : {std::pair<const ParameterizedSurface&, ConstrainedResult&>{pa, map_a}, {pb, map_b}}) {
     const size_t n = map.sphere.size();
