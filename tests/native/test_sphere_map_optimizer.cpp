@@ -66,7 +66,8 @@ double energy(const TriangleMesh& from, const std::vector<Vec3>& from_sphere, co
 // parameterization is an embedding.
 double thinnest(const TriangleMesh& mesh, const std::vector<Vec3>& sphere) {
   double lowest = 1;
-  for (const Triangle& t : mesh.triangles) lowest = std::min(lowest, sphere[t[0]].dot(sphere[t[1]].cross(sphere[t[2]])));
+  for (const Triangle& t : mesh.triangles)
+    lowest = std::min(lowest, sphere[t[0]].dot(sphere[t[1]].cross(sphere[t[2]])));
   return lowest;
 }
 

@@ -34,7 +34,7 @@ MapOptimizer::Side::Side(MapSide side)
   for (size_t f = 0; f < surface.triangles.size(); ++f) {
     const Triangle& t = surface.triangles[f];
     for (int v : t) faces_of[v].push_back(int(f));
-    min_shape[f] = std::min(1e-3, 0.5 * shape(sphere[t[0]], sphere[t[1]], sphere[t[2]]));
+    min_shape[f] = std::min(1e-3, 0.5 * spherical_shape(sphere[t[0]], sphere[t[1]], sphere[t[2]]));
   }
   // A vertex move reads its sampled triangles' corners too, and a Steiner
   // vertex can part two corners of one: those must not move at once either.
@@ -105,7 +105,7 @@ double MapOptimizer::move(Side& s, Side& o, int v) const {
     const auto position = [&](int u) -> const Vec3& { return u == v ? x : s.sphere[u]; };
     for (int f : star) {
       const Triangle& t = s.surface.triangles[f];
-      if (!(shape(position(t[0]), position(t[1]), position(t[2])) > s.min_shape[f])) return kInfinity;
+      if (!(spherical_shape(position(t[0]), position(t[1]), position(t[2])) > s.min_shape[f])) return kInfinity;
     }
     const SphereLocation at = on_other_->locate(x);
     image = o.point_in(at.triangle, at.barycentric.data()) / to_moving;

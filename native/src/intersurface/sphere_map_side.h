@@ -19,7 +19,7 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // det(a, b, c) over the squared edge lengths: about 0.29 for an equilateral
 // triangle, 0 for a degenerate one, negative for a flipped one.
-inline double shape(const Vec3& a, const Vec3& b, const Vec3& c) {
+inline double spherical_shape(const Vec3& a, const Vec3& b, const Vec3& c) {
   const double edges = (b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm();
   return edges > 0 ? a.dot(b.cross(c)) / edges : 0;
 }

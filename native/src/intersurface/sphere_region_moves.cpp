@@ -113,7 +113,7 @@ double MapOptimizer::region_move(Side& s, Side& o, const Vec3& c, double radius)
     }
     for (int f : faces) {
       const Triangle& t = s.surface.triangles[f];
-      if (!(shape(position(t[0]), position(t[1]), position(t[2])) > s.min_shape[f])) return kInfinity;
+      if (!(spherical_shape(position(t[0]), position(t[1]), position(t[2])) > s.min_shape[f])) return kInfinity;
     }
     for (size_t i = 0; i < members.size(); ++i) {
       const SphereLocation at = on_other_->locate(moved[i]);
