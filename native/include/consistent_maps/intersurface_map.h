@@ -180,7 +180,9 @@ constexpr double kCornerNudge = 1e-3;
 // isometry). Image triangles of zero area are left out of the average and
 // counted in `degenerate`; `flipped` counts image triangles whose normal
 // points against the target surface's normal there (the area-weighted normal
-// of the target triangles holding the three images). Both are properties of
+// of the target triangles holding the three images; the target's normals
+// turned when one mesh, its holes closed, lists its triangles inwards and the
+// other outwards). Both are properties of
 // this vertex sampling: the map itself is bijective (see sphere_flipped).
 // The mean is dominated by the few most distorted triangles (often
 // near-degenerate samples); `median_symmetric_dirichlet`, the median
@@ -277,7 +279,8 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
                                     const ProgressCallback& progress = {});
 
 // The distortion measure above for any per-vertex map of `source` onto
-// `target` (one SurfacePoint per source vertex).
+// `target` (one SurfacePoint per source vertex). Throws TopologyError when
+// either mesh is not a manifold, consistently oriented surface.
 MapDistortion measure_intersurface_map(const TriangleMesh& source, const TriangleMesh& target,
                                        const std::vector<SurfacePoint>& image);
 

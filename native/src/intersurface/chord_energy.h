@@ -14,6 +14,7 @@
 
 #include "intersurface/consistent_partition.h"
 #include "intersurface/patch_locator.h"
+#include "intersurface/surface_image.h"
 
 namespace cmaps {
 
@@ -51,11 +52,6 @@ inline Shape shape_of(const PartitionSide& side, int f) {
   return s;
 }
 
-// A point's image on the other mesh (scaled to this mesh's area) and that mesh's normal there.
-struct Image {
-  Vec3 position = Vec3::Zero(), normal = Vec3::Zero();
-};
-
 // The image of the point with weights w in `side`'s triangle `face`, scaled.
 inline Image image_in(const PartitionSide& side, int face, const std::array<double, 3>& w, double scale) {
   const Triangle& t = side.mesh.triangles()[face];
@@ -70,7 +66,7 @@ inline double triangle_energy(const Shape& s, const Image* image[3]) {
   const Vec3 nq = (image[1]->position - image[0]->position).cross(image[2]->position - image[0]->position);
   const double aq = 0.5 * nq.norm();
   if (aq <= 1e-14 * s.area) return kChordInf;
-  if (nq.dot(image[0]->normal + image[1]->normal + image[2]->normal) < 0) return kFoldPenalty * s.area;
+  if (facing(nq, image) < 0) return kFoldPenalty * s.area;
   double dirichlet = 0;
   for (int i = 0; i < 3; ++i)
     dirichlet += s.cot[i] * (image[(i + 2) % 3]->position - image[(i + 1) % 3]->position).squaredNorm();

@@ -33,6 +33,7 @@
 #include "intersurface/patch_parameterization.h"
 #include "intersurface/path_guide.h"
 #include "intersurface/hole_rims.h"
+#include "paths/mesh_holes.h"
 
 namespace cmaps {
 namespace {
@@ -930,8 +931,10 @@ MapDistortion measure_intersurface_map(const TriangleMesh& source, const Triangl
   const double source_area = surface_area(source), target_area = surface_area(target);
   const double scale = target_area > 0 ? std::sqrt(source_area / target_area) : 1;  // target to the source's area
   // Normals of the target, turned to face like the source's when one of the
-  // two meshes lists its triangles inwards.
-  const double facing = signed_volume(source) * signed_volume(target) < 0 ? -1.0 : 1.0;
+  // two meshes lists its triangles inwards (judged with their holes closed:
+  // an open mesh's volume changes sign with where the origin lies).
+  const double facing =
+      signed_volume(close_holes(source, true).mesh) * signed_volume(close_holes(target, true).mesh) < 0 ? -1.0 : 1.0;
   const auto normal = [&](int t) {
     const Triangle& c = target.triangles[t];
     return Vec3(facing *

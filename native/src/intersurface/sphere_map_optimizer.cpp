@@ -21,6 +21,7 @@ MapOptimizer::Side::Side(MapSide side)
     throw InvalidInput("map optimizer: " + std::to_string(sphere.size()) + " sphere points and " +
                        std::to_string(fixed.size()) + " fixed flags for " + std::to_string(n) + " vertices");
   area = surface_area(TriangleMesh{surface.vertices, sampled});
+  const double outwards = signed_volume(surface) < 0 ? -1 : 1;  // `surface` is closed: its holes have fans
   faces_of.resize(n);
   sampled_of.resize(n);
   slot.assign(n, -1);
@@ -31,11 +32,25 @@ MapOptimizer::Side::Side(MapSide side)
       sampled_of[v].push_back(int(f));
     }
   min_shape.resize(surface.triangles.size());
+  normals.resize(surface.triangles.size());
   for (size_t f = 0; f < surface.triangles.size(); ++f) {
     const Triangle& t = surface.triangles[f];
     for (int v : t) faces_of[v].push_back(int(f));
     min_shape[f] = std::min(1e-3, 0.5 * spherical_shape(sphere[t[0]], sphere[t[1]], sphere[t[2]]));
+    const Vec3& x = surface.vertices[t[0]];
+    normals[f] = outwards * (surface.vertices[t[1]] - x).cross(surface.vertices[t[2]] - x).normalized();
   }
+  // The input's order against the surface's: its triangles' normals against
+  // the outward normals at their corners (an input with holes has no volume
+  // whose sign could tell).
+  double agreement = 0;
+  for (const Triangle& t : sampled) {
+    const Vec3& x = surface.vertices[t[0]];
+    const Vec3 normal = (surface.vertices[t[1]] - x).cross(surface.vertices[t[2]] - x);
+    for (int v : t)
+      for (int f : faces_of[v]) agreement += normal.dot(normals[f]);
+  }
+  orientation = agreement < 0 ? -1 : 1;
   // A vertex move reads its sampled triangles' corners too, and a Steiner
   // vertex can part two corners of one: those must not move at once either.
   std::vector<Triangle> both = surface.triangles;
@@ -56,9 +71,9 @@ void MapOptimizer::refresh(Side& moving, Side& other) {
   // Images of `from`'s vertices on `to`, scaled to `from`'s area.
   const auto images = [&](const Side& from, const Side& to, const std::vector<SphereLocation>& at) {
     const double scale = std::sqrt(from.area / to.area);
-    std::vector<Vec3> result(at.size());
+    std::vector<Image> result(at.size());
     parallel_for(at.size(), threads_,
-                 [&](size_t i) { result[i] = scale * to.point_in(at[i].triangle, at[i].barycentric.data()); });
+                 [&](size_t i) { result[i] = to.image_in(at[i].triangle, at[i].barycentric.data(), scale); });
     return result;
   };
   moving.images = images(moving, other, on_other_->locate_all(moving.sphere, threads_));
@@ -94,13 +109,13 @@ double MapOptimizer::move(Side& s, Side& o, int v) const {
   std::sort(inside.begin(), inside.end());
   const std::vector<int>& sampled = s.sampled_of[v];
   const std::vector<int> other_faces = o.around(o.sampled_of, inside);
-  std::vector<Vec3> inside_images(inside.size());
+  std::vector<Image> inside_images(inside.size());
   std::vector<int> inside_faces(inside.size());
   const double to_moving = std::sqrt(o.area / s.area);
 
   // The energy with v at sphere point x (+inf outside the allowed kernel);
   // leaves v's image and those of the vertices inside in `image`, `inside_images`.
-  Vec3 image;
+  Image image;
   const auto energy_at = [&](const Vec3& x) {
     const auto position = [&](int u) -> const Vec3& { return u == v ? x : s.sphere[u]; };
     for (int f : star) {
@@ -108,18 +123,18 @@ double MapOptimizer::move(Side& s, Side& o, int v) const {
       if (!(spherical_shape(position(t[0]), position(t[1]), position(t[2])) > s.min_shape[f])) return kInfinity;
     }
     const SphereLocation at = on_other_->locate(x);
-    image = o.point_in(at.triangle, at.barycentric.data()) / to_moving;
+    image = o.image_in(at.triangle, at.barycentric.data(), 1 / to_moving);
     for (size_t i = 0; i < inside.size(); ++i) {
       double w[3] = {1, 0, 0};
       inside_faces[i] = s.holder(o.sphere[inside[i]], star, position, w);
       if (inside_faces[i] < 0) return kInfinity;
-      inside_images[i] = to_moving * s.point_in(inside_faces[i], w);
+      inside_images[i] = s.image_in(inside_faces[i], w, to_moving);
     }
     double energy = 0;
     for (int f : sampled)
-      energy += s.triangle_energy(f, [&](int u) -> const Vec3& { return u == v ? image : s.images[u]; });
+      energy += s.triangle_energy(f, [&](int u) -> const Image& { return u == v ? image : s.images[u]; });
     for (int g : other_faces)
-      energy += o.triangle_energy(g, [&](int u) -> const Vec3& {
+      energy += o.triangle_energy(g, [&](int u) -> const Image& {
         const auto it = std::lower_bound(inside.begin(), inside.end(), u);
         return it != inside.end() && *it == u ? inside_images[it - inside.begin()] : o.images[u];
       });

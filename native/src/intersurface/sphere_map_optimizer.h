@@ -8,7 +8,8 @@
 // triangle of A (the input's) against the triangle its corners' images on B
 // form, plus the same for B's on A (each direction averaged over its
 // surface's area, the other surface scaled to the same area), exactly what
-// measure_intersurface_map measures. Moving a vertex of A changes its own
+// measure_intersurface_map measures, plus a charge for each folded image
+// triangle (sphere_map_side.h). Moving a vertex of A changes its own
 // image and the images on A of B's vertices inside its spherical star, and
 // both terms see that.
 //

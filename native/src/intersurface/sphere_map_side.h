@@ -11,11 +11,19 @@
 
 #include "common/coloured_sweeps.h"
 #include "intersurface/sphere_map_optimizer.h"
+#include "intersurface/surface_image.h"
 #include "intersurface/symmetric_dirichlet.h"
 
 namespace cmaps {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// A folded image triangle (facing against the surface it lies on) adds this
+// energy density times the cosine of the angle between its normal and the
+// surface's reversed: nothing at the onset of a fold, so the difference steps
+// of a vertex move see a continuous energy that falls towards unfolding, and
+// the full density when it faces straight against the surface, enough to pay
+// for much distortion around it.
+constexpr double kFoldDensity = 100;
 
 // det(a, b, c) over the squared edge lengths: about 0.29 for an equilateral
 // triangle, 0 for a degenerate one, negative for a flipped one.
@@ -44,11 +52,15 @@ struct MapOptimizer::Side {
   std::vector<std::vector<int>> sampled_of;  // per vertex: its sampled triangles
   std::vector<std::array<int, 3>> neighbours;  // per triangle, across edge k (corner k to k + 1)
   std::vector<double> min_shape;               // per triangle: the thinnest shape allowed on the sphere
+  // Per triangle: the unit normal, facing outwards (the spherical map may
+  // list the triangles in the other order than the input).
+  std::vector<Vec3> normals;
+  double orientation = 1;  // -1 when the input lists its triangles inwards
   VertexColouring colouring;
   // Refreshed before each pass: every vertex's image on the other surface
   // (scaled to this side's area), pending images while the other side
   // moves, and per triangle the other side's vertices whose sphere points lie in it.
-  std::vector<Vec3> images, pending;
+  std::vector<Image> images, pending;
   std::vector<std::vector<int>> holds;
   // During a region move: per vertex, its place among the vertices the move
   // carries (-1 for the rest).
@@ -56,13 +68,14 @@ struct MapOptimizer::Side {
 
   explicit Side(MapSide side);
 
-  // The point with weights w in triangle f, negative weights taken as 0.
-  Vec3 point_in(int f, const double* w) const {
+  // The point with weights w in triangle f (negative weights taken as 0),
+  // scaled by `scale`, as the image of a vertex of the other side.
+  Image image_in(int f, const double* w, double scale) const {
     const Triangle& t = surface.triangles[f];
     Vec3 x = Vec3::Zero();
     double sum = 0;
     for (int k = 0; k < 3; ++k) x += std::max(0.0, w[k]) * surface.vertices[t[k]], sum += std::max(0.0, w[k]);
-    return x / std::max(sum, 1e-300);
+    return {scale * x / std::max(sum, 1e-300), normals[f]};
   }
 
   // Of `faces`, the triangle whose cone holds direction d best (its smallest
@@ -89,16 +102,22 @@ struct MapOptimizer::Side {
     return faces;
   }
 
-  // Energy of sampled triangle f times its area over the side's area;
-  // image(u) is the image of vertex u.
-  template <class Image>
-  double triangle_energy(int f, const Image& image) const {
+  // Energy of sampled triangle f times its area over the side's area, a
+  // fold charged kFoldDensity more; image_of(u) is the image of vertex u.
+  template <class ImageOf>
+  double triangle_energy(int f, const ImageOf& image_of) const {
     const Triangle& t = sampled[f];
+    const Image* const image[3] = {&image_of(t[0]), &image_of(t[1]), &image_of(t[2])};
     const Vec3 p[3] = {surface.vertices[t[0]], surface.vertices[t[1]], surface.vertices[t[2]]};
-    const Vec3 q[3] = {image(t[0]), image(t[1]), image(t[2])};
+    const Vec3 q[3] = {image[0]->position, image[1]->position, image[2]->position};
     double a;
-    const double e = symmetric_dirichlet(p, q, &a);
-    return a > 0 ? e * a / area : 0;
+    double e = symmetric_dirichlet(p, q, &a);
+    if (!(a > 0)) return 0;
+    const Vec3 nq = (q[1] - q[0]).cross(q[2] - q[0]);
+    const double against = orientation * facing(nq, image);
+    if (against < 0)
+      e -= kFoldDensity * against / (nq.norm() * (image[0]->normal + image[1]->normal + image[2]->normal).norm());
+    return e * a / area;
   }
 };
 

@@ -99,7 +99,8 @@ double MapOptimizer::region_move(Side& s, Side& o, const Vec3& c, double radius)
   // parameters q = (t, a) (+inf where a triangle thins too far); leaves the
   // members' new sphere points and images, and the held vertices' triangles
   // and images, in the vectors below.
-  std::vector<Vec3> moved(members.size()), member_images(members.size()), held_images(held.size());
+  std::vector<Vec3> moved(members.size());
+  std::vector<Image> member_images(members.size()), held_images(held.size());
   std::vector<int> new_held_faces(held.size());
   const auto position = [&](int v) -> const Vec3& {
     const int i = s.slot[v];
@@ -117,7 +118,7 @@ double MapOptimizer::region_move(Side& s, Side& o, const Vec3& c, double radius)
     }
     for (size_t i = 0; i < members.size(); ++i) {
       const SphereLocation at = on_other_->locate(moved[i]);
-      member_images[i] = o.point_in(at.triangle, at.barycentric.data()) / to_moving;
+      member_images[i] = o.image_in(at.triangle, at.barycentric.data(), 1 / to_moving);
     }
     for (size_t i = 0; i < held.size(); ++i) {
       const Vec3& d = o.sphere[held[i]];
@@ -126,16 +127,16 @@ double MapOptimizer::region_move(Side& s, Side& o, const Vec3& c, double radius)
       if (f < 0) f = s.holder(d, faces, position, w);
       if (f < 0) return kInfinity;
       new_held_faces[i] = f;
-      held_images[i] = to_moving * s.point_in(f, w);
+      held_images[i] = s.image_in(f, w, to_moving);
     }
     double energy = 0;
     for (int f : sampled)
-      energy += s.triangle_energy(f, [&](int u) -> const Vec3& {
+      energy += s.triangle_energy(f, [&](int u) -> const Image& {
         const int i = s.slot[u];
         return i >= 0 ? member_images[i] : s.images[u];
       });
     for (int g : other_faces)
-      energy += o.triangle_energy(g, [&](int u) -> const Vec3& {
+      energy += o.triangle_energy(g, [&](int u) -> const Image& {
         const int i = o.slot[u];
         return i >= 0 ? held_images[i] : o.images[u];
       });
