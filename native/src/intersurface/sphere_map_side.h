@@ -103,7 +103,7 @@ struct MapOptimizer::Side {
   }
 
   // Energy of sampled triangle f times its area over the side's area, a
-  // fold charged kFoldDensity more; image_of(u) is the image of vertex u.
+  // fold charged up to kFoldDensity more; image_of(u) is the image of vertex u.
   template <class ImageOf>
   double triangle_energy(int f, const ImageOf& image_of) const {
     const Triangle& t = sampled[f];
