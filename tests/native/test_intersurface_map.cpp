@@ -194,16 +194,20 @@ TEST(IntersurfaceMap, MedianEnergyIsNotMovedByAFewDistortedTriangles) {
 
 // An open mesh's signed volume depends on where the origin lies, so which
 // way a mesh faces is judged with its holes closed: a face mapped onto a
-// far-off copy of itself folds nothing, wherever the copy lies.
+// far-off copy of itself folds nothing, wherever the copy lies, and with two
+// corners' images of one triangle swapped folds that triangle.
 TEST(IntersurfaceMap, FoldsOfOpenMeshesDoNotDependOnTheirPlace) {
   const TriangleMesh mesh = read_mesh(shared_mesh("sets/faces/neutral.ply"));
   const std::vector<SurfacePoint> identity = identity_map(mesh);
+  std::vector<SurfacePoint> swapped = identity;
+  std::swap(swapped[mesh.triangles[0][0]], swapped[mesh.triangles[0][1]]);
   for (int axis = 0; axis < 6; ++axis) {
     TriangleMesh moved = mesh;
     const Vec3 offset = (axis < 3 ? 10 : -10) * diagonal(mesh) * Vec3::Unit(axis % 3);
     for (Vec3& x : moved.vertices) x += offset;
     EXPECT_EQ(measure_intersurface_map(mesh, moved, identity).flipped, 0) << "offset " << offset.transpose();
     EXPECT_EQ(measure_intersurface_map(moved, mesh, identity).flipped, 0) << "offset " << offset.transpose();
+    EXPECT_GE(measure_intersurface_map(mesh, moved, swapped).flipped, 1) << "offset " << offset.transpose();
   }
 }
 

@@ -66,7 +66,7 @@ inline double triangle_energy(const Shape& s, const Image* image[3]) {
   const Vec3 nq = (image[1]->position - image[0]->position).cross(image[2]->position - image[0]->position);
   const double aq = 0.5 * nq.norm();
   if (aq <= 1e-14 * s.area) return kChordInf;
-  if (facing(nq, image) < 0) return kFoldPenalty * s.area;
+  if (nq.dot(surface_normal(image)) < 0) return kFoldPenalty * s.area;
   double dirichlet = 0;
   for (int i = 0; i < 3; ++i)
     dirichlet += s.cot[i] * (image[(i + 2) % 3]->position - image[(i + 1) % 3]->position).squaredNorm();

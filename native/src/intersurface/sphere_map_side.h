@@ -114,9 +114,9 @@ struct MapOptimizer::Side {
     double e = symmetric_dirichlet(p, q, &a);
     if (!(a > 0)) return 0;
     const Vec3 nq = (q[1] - q[0]).cross(q[2] - q[0]);
-    const double against = orientation * facing(nq, image);
-    if (against < 0)
-      e -= kFoldDensity * against / (nq.norm() * (image[0]->normal + image[1]->normal + image[2]->normal).norm());
+    const Vec3 normal = surface_normal(image);
+    const double against = orientation * nq.dot(normal);
+    if (against < 0) e -= kFoldDensity * against / (nq.norm() * normal.norm());
     return e * a / area;
   }
 };

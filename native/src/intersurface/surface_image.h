@@ -11,11 +11,11 @@ struct Image {
   Vec3 position = Vec3::Zero(), normal = Vec3::Zero();
 };
 
-// The chord triangle's normal (the cross product of its edges) against the
-// surface's normals at its corners: negative for a fold, as
-// measure_intersurface_map counts them.
-inline double facing(const Vec3& chord_normal, const Image* const* corners) {
-  return chord_normal.dot(corners[0]->normal + corners[1]->normal + corners[2]->normal);
+// The surface's normal under a chord triangle of three images: the sum of
+// the normals there. A chord triangle whose normal points against it is a
+// fold, as measure_intersurface_map counts them.
+inline Vec3 surface_normal(const Image* const* corners) {
+  return corners[0]->normal + corners[1]->normal + corners[2]->normal;
 }
 
 }  // namespace cmaps
