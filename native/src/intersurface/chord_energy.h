@@ -15,6 +15,7 @@
 #include "intersurface/consistent_partition.h"
 #include "intersurface/patch_locator.h"
 #include "intersurface/surface_image.h"
+#include "intersurface/symmetric_dirichlet.h"
 
 namespace cmaps {
 
@@ -34,22 +35,10 @@ const T* find_remapped(const std::vector<std::pair<int, T>>& sorted, int w) {
   return it != sorted.end() && it->first == w ? &it->second : nullptr;
 }
 
-// A triangle's area and the cotangents of its angles.
-struct Shape {
-  double area = 0;
-  double cot[3] = {0, 0, 0};
-};
-
-inline Shape shape_of(const PartitionSide& side, int f) {
+// Triangle f of `side` as the source of a map.
+inline SourceTriangle shape_of(const PartitionSide& side, int f) {
   const Triangle& t = side.mesh.triangles()[f];
-  const Vec3 p[3] = {side.mesh.position(t[0]), side.mesh.position(t[1]), side.mesh.position(t[2])};
-  Shape s;
-  s.area = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
-  for (int i = 0; i < 3; ++i) {
-    const Vec3 u = p[(i + 1) % 3] - p[i], v = p[(i + 2) % 3] - p[i];
-    s.cot[i] = u.dot(v) / std::max(u.cross(v).norm(), 1e-300);
-  }
-  return s;
+  return source_triangle({side.mesh.position(t[0]), side.mesh.position(t[1]), side.mesh.position(t[2])});
 }
 
 // The image of the point with weights w in `side`'s triangle `face`, scaled.
@@ -61,7 +50,7 @@ inline Image image_in(const PartitionSide& side, int face, const std::array<doub
 
 // Area times symmetric Dirichlet density of the linear map from a triangle
 // onto the chord triangle of its corners' images; inf when degenerate.
-inline double triangle_energy(const Shape& s, const Image* image[3]) {
+inline double triangle_energy(const SourceTriangle& s, const Image* image[3]) {
   if (s.area <= 0) return 0;
   const Vec3 nq = (image[1]->position - image[0]->position).cross(image[2]->position - image[0]->position);
   const double aq = 0.5 * nq.norm();

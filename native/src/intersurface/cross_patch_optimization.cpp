@@ -59,9 +59,9 @@ CrossPatchMap::CrossPatchMap(const ConsistentPartition& partition, const PatchPa
   const std::vector<std::vector<int>> faces_a = faces_by_patch(a_, patches), faces_b = faces_by_patch(b_, patches);
 
   shape_a_.resize(a_.mesh.triangles().size());
-  for (int f = 0; f < int(shape_a_.size()); ++f) shape_a_[f] = is_fan(a_, f) ? Shape{} : shape_of(a_, f);
+  for (int f = 0; f < int(shape_a_.size()); ++f) shape_a_[f] = is_fan(a_, f) ? SourceTriangle() : shape_of(a_, f);
   shape_b_.resize(b_.mesh.triangles().size());
-  for (int g = 0; g < int(shape_b_.size()); ++g) shape_b_[g] = is_fan(b_, g) ? Shape{} : shape_of(b_, g);
+  for (int g = 0; g < int(shape_b_.size()); ++g) shape_b_[g] = is_fan(b_, g) ? SourceTriangle() : shape_of(b_, g);
 
   // A's vertices: a home each (a surface patch beside a rim vertex, not its hole's fan).
   home_.assign(na, -1);

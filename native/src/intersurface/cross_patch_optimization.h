@@ -95,7 +95,7 @@ class CrossPatchMap {
   std::vector<Vec2> point_; // per vertex of A: its canonical point there
   std::vector<char> fixed_; // per vertex of A: base vertices and hole fans
   std::vector<int> base_vertex_;  // per vertex of A: its base vertex, -1 for none
-  std::vector<Shape> shape_a_, shape_b_;  // per triangle (zero for a hole's fan)
+  std::vector<SourceTriangle> shape_a_, shape_b_;  // per triangle (zero for a hole's fan)
   std::vector<Image> image_;               // per vertex of A: its image on B
   std::vector<PatchLocator> locate_b_;     // per base triangle: B's patch
   std::vector<std::vector<std::pair<int, Vec2>>> b_points_;  // per vertex of B: its canonical points

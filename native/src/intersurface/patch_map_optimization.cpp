@@ -42,7 +42,8 @@ class PatchEnergy {
       const Triangle& t = source.mesh.triangles()[f];
       face_.push_back(f);
       triangle_.push_back({local_.at(t[0]), local_.at(t[1]), local_.at(t[2])});
-      shape_.push_back(source.mesh.input_triangle(f) < source.input_triangles ? shape_of(source, f) : Shape{});
+      shape_.push_back(source.mesh.input_triangle(f) < source.input_triangles ? shape_of(source, f)
+                                                                              : SourceTriangle());
       for (int k = 0; k < 3; ++k) ring_[triangle_.back()[k]].push_back(int(triangle_.size()) - 1);
     }
     std::unordered_map<int, int> local_face;
@@ -58,7 +59,8 @@ class PatchEnergy {
     for (int g : target_faces) {
       const Triangle& t = target.mesh.triangles()[g];
       back_triangle_.push_back({target_local.at(t[0]), target_local.at(t[1]), target_local.at(t[2])});
-      back_shape_.push_back(target.mesh.input_triangle(g) < target.input_triangles ? shape_of(target, g) : Shape{});
+      back_shape_.push_back(target.mesh.input_triangle(g) < target.input_triangles ? shape_of(target, g)
+                                                                                   : SourceTriangle());
       for (int w : back_triangle_.back()) {
         target_ring_[w].push_back(int(back_triangle_.size()) - 1);
         if (seen[w]) continue;
@@ -225,14 +227,14 @@ class PatchEnergy {
   std::vector<Image> image_;
   std::vector<int> face_;                     // per local triangle: its index in the mesh
   std::vector<std::array<int, 3>> triangle_;  // and its local corners
-  std::vector<Shape> shape_;
+  std::vector<SourceTriangle> shape_;
   std::vector<std::vector<int>> ring_;  // per local vertex: its local triangles
   std::vector<std::vector<int>> host_;  // per local triangle: the local target vertices inside it
   // The target's side, local.
   std::vector<Vec2> target_point_;
   std::vector<Image> back_image_;
   std::vector<std::array<int, 3>> back_triangle_;
-  std::vector<Shape> back_shape_;
+  std::vector<SourceTriangle> back_shape_;
   std::vector<std::vector<int>> target_ring_;  // per local target vertex: its local target triangles
   std::unique_ptr<PatchLocator> target_locator_;
 };

@@ -31,6 +31,9 @@ MapOptimizer::Side::Side(MapSide side)
         throw InvalidInput("map optimizer: sampled vertex " + std::to_string(v) + " out of range");
       sampled_of[v].push_back(int(f));
     }
+  shapes.reserve(sampled.size());
+  for (const Triangle& t : sampled)
+    shapes.push_back(source_triangle({surface.vertices[t[0]], surface.vertices[t[1]], surface.vertices[t[2]]}));
   min_shape.resize(surface.triangles.size());
   normals.resize(surface.triangles.size());
   for (size_t f = 0; f < surface.triangles.size(); ++f) {

@@ -50,6 +50,7 @@ struct MapOptimizer::Side {
   double area = 0;
   std::vector<std::vector<int>> faces_of;    // per vertex: its triangles of `surface`
   std::vector<std::vector<int>> sampled_of;  // per vertex: its sampled triangles
+  std::vector<SourceTriangle> shapes;        // per sampled triangle
   std::vector<std::array<int, 3>> neighbours;  // per triangle, across edge k (corner k to k + 1)
   std::vector<double> min_shape;               // per triangle: the thinnest shape allowed on the sphere
   // Per triangle: the unit normal, facing outwards (the spherical map may
@@ -108,16 +109,15 @@ struct MapOptimizer::Side {
   double triangle_energy(int f, const ImageOf& image_of) const {
     const Triangle& t = sampled[f];
     const Image* const image[3] = {&image_of(t[0]), &image_of(t[1]), &image_of(t[2])};
-    const Vec3 p[3] = {surface.vertices[t[0]], surface.vertices[t[1]], surface.vertices[t[2]]};
     const Vec3 q[3] = {image[0]->position, image[1]->position, image[2]->position};
-    double a;
-    double e = symmetric_dirichlet(p, q, &a);
-    if (!(a > 0)) return 0;
+    const SourceTriangle& p = shapes[f];
+    if (!(p.area > 0)) return 0;
     const Vec3 nq = (q[1] - q[0]).cross(q[2] - q[0]);
+    double e = symmetric_dirichlet(p, q, nq);
     const Vec3 normal = surface_normal(image);
     const double against = orientation * nq.dot(normal);
     if (against < 0) e -= kFoldDensity * against / (nq.norm() * normal.norm());
-    return e * a / area;
+    return e * p.area / area;
   }
 };
 

@@ -11,21 +11,41 @@
 
 namespace cmaps {
 
-// The energy of P -> Q (+inf for a degenerate image); 0 with *area = 0 for a
-// degenerate source, which carries no energy. *area receives P's area.
-inline double symmetric_dirichlet(const Vec3 (&p)[3], const Vec3 (&q)[3], double* area) {
-  const double ap = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
-  const double aq = 0.5 * (q[1] - q[0]).cross(q[2] - q[0]).norm();
-  *area = ap;
-  if (!(ap > 0)) return 0;
-  if (!(aq > 0)) return std::numeric_limits<double>::infinity();
-  double dirichlet = 0;
+// What the energy needs of the source triangle P: its area and the
+// cotangents of its angles. An optimizer moving only images computes it once.
+struct SourceTriangle {
+  double area = 0;
+  double cot[3] = {0, 0, 0};
+};
+
+inline SourceTriangle source_triangle(const Vec3 (&p)[3]) {
+  SourceTriangle s;
+  s.area = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
+  if (!(s.area > 0)) return s;
   for (int i = 0; i < 3; ++i) {
     const Vec3 u = p[(i + 1) % 3] - p[i], v = p[(i + 2) % 3] - p[i];
-    dirichlet += u.dot(v) / u.cross(v).norm() * (q[(i + 2) % 3] - q[(i + 1) % 3]).squaredNorm();
+    s.cot[i] = u.dot(v) / u.cross(v).norm();
   }
-  dirichlet /= 2 * ap;
-  return dirichlet * (1 + (ap / aq) * (ap / aq));
+  return s;
+}
+
+// The energy of P -> Q, given Q's normal (q1 - q0) x (q2 - q0): 0 for a
+// degenerate source, which carries no energy, +inf for a degenerate image.
+inline double symmetric_dirichlet(const SourceTriangle& p, const Vec3 (&q)[3], const Vec3& q_normal) {
+  if (!(p.area > 0)) return 0;
+  const double aq = 0.5 * q_normal.norm();
+  if (!(aq > 0)) return std::numeric_limits<double>::infinity();
+  double dirichlet = 0;
+  for (int i = 0; i < 3; ++i) dirichlet += p.cot[i] * (q[(i + 2) % 3] - q[(i + 1) % 3]).squaredNorm();
+  dirichlet /= 2 * p.area;
+  return dirichlet * (1 + (p.area / aq) * (p.area / aq));
+}
+
+// The energy of P -> Q; *area receives P's area.
+inline double symmetric_dirichlet(const Vec3 (&p)[3], const Vec3 (&q)[3], double* area) {
+  const SourceTriangle s = source_triangle(p);
+  *area = s.area;
+  return symmetric_dirichlet(s, q, (q[1] - q[0]).cross(q[2] - q[0]));
 }
 
 }  // namespace cmaps
