@@ -114,5 +114,25 @@ TEST(SphereMapOptimizer, RegionMovesUndoASqueezeWhereVertexMovesLag) {
   EXPECT_LT(optimized[1] - 8, 0.25 * (optimized[0] - 8));
 }
 
+// A colour class's moves run in parallel (each reads only neighbours that
+// stay put, and images wait until the class is done), so the map does not
+// depend on the thread count.
+TEST(SphereMapOptimizer, SameMapForAnyThreadCount) {
+  const TriangleMesh sphere = subdivided_sphere(5);  // 8,194 vertices: colour classes of over 256
+  std::vector<Vec3> start_a(sphere.vertices.size());
+  for (std::size_t v = 0; v < start_a.size(); ++v) start_a[v] = squeezed(sphere.vertices[v], 1.2);
+  const std::vector<char> fixed(sphere.vertices.size(), 0);
+  std::vector<Vec3> a[2] = {start_a, start_a}, b[2] = {sphere.vertices, sphere.vertices};
+  for (int threads : {1, 2}) {
+    std::vector<Vec3>& x = a[threads - 1];
+    std::vector<Vec3>& y = b[threads - 1];
+    MapOptimizer optimizer({sphere, sphere.triangles, x, fixed}, {sphere, sphere.triangles, y, fixed}, threads);
+    optimizer.optimize(1, 3, 1e-3, false, nullptr);
+  }
+  EXPECT_NE(a[0], start_a);
+  EXPECT_EQ(a[0], a[1]);
+  EXPECT_EQ(b[0], b[1]);
+}
+
 }  // namespace
 }  // namespace cmaps
