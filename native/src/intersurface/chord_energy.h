@@ -56,11 +56,8 @@ inline double triangle_energy(const SourceTriangle& s, const Image* image[3]) {
   const double aq = 0.5 * nq.norm();
   if (aq <= 1e-14 * s.area) return kChordInf;
   if (nq.dot(surface_normal(image)) < 0) return kFoldPenalty * s.area;
-  double dirichlet = 0;
-  for (int i = 0; i < 3; ++i)
-    dirichlet += s.cot[i] * (image[(i + 2) % 3]->position - image[(i + 1) % 3]->position).squaredNorm();
-  dirichlet /= 2 * s.area;
-  return s.area * dirichlet * (1 + (s.area / aq) * (s.area / aq));
+  const Vec3 q[3] = {image[0]->position, image[1]->position, image[2]->position};
+  return s.area * dirichlet_term(s, q) * (1 + (s.area / aq) * (s.area / aq));
 }
 
 // The weights clamped to the triangle and normalized.

@@ -4,6 +4,7 @@
 // Q|^2 / (2 area P) needs no common plane, and |J^-1|_F^2 = |J|_F^2 (area P /
 // area Q)^2 for a 2x2 Jacobian.
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -24,9 +25,16 @@ inline SourceTriangle source_triangle(const Vec3 (&p)[3]) {
   if (!(s.area > 0)) return s;
   for (int i = 0; i < 3; ++i) {
     const Vec3 u = p[(i + 1) % 3] - p[i], v = p[(i + 2) % 3] - p[i];
-    s.cot[i] = u.dot(v) / u.cross(v).norm();
+    s.cot[i] = u.dot(v) / std::max(u.cross(v).norm(), 1e-300);
   }
   return s;
+}
+
+// |J|_F^2 of P -> Q (P not degenerate).
+inline double dirichlet_term(const SourceTriangle& p, const Vec3 (&q)[3]) {
+  double dirichlet = 0;
+  for (int i = 0; i < 3; ++i) dirichlet += p.cot[i] * (q[(i + 2) % 3] - q[(i + 1) % 3]).squaredNorm();
+  return dirichlet / (2 * p.area);
 }
 
 // The energy of P -> Q, given Q's normal (q1 - q0) x (q2 - q0): 0 for a
@@ -35,10 +43,7 @@ inline double symmetric_dirichlet(const SourceTriangle& p, const Vec3 (&q)[3], c
   if (!(p.area > 0)) return 0;
   const double aq = 0.5 * q_normal.norm();
   if (!(aq > 0)) return std::numeric_limits<double>::infinity();
-  double dirichlet = 0;
-  for (int i = 0; i < 3; ++i) dirichlet += p.cot[i] * (q[(i + 2) % 3] - q[(i + 1) % 3]).squaredNorm();
-  dirichlet /= 2 * p.area;
-  return dirichlet * (1 + (p.area / aq) * (p.area / aq));
+  return dirichlet_term(p, q) * (1 + (p.area / aq) * (p.area / aq));
 }
 
 // The energy of P -> Q; *area receives P's area.
