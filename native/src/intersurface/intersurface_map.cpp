@@ -297,8 +297,10 @@ void optimize_composition(const TriangleMesh& a, ConstrainedResult& map_a, const
                                       {map_b, pb, fixed_b}})
     for (std::size_t t = map.triangles.size(); t < p.surface.triangles.size(); ++t)
       for (int v : p.surface.triangles[t]) fixed[v] = 1;
-  MapOptimizer optimizer({pa.surface, a.triangles, pa.sphere, fixed_a}, {pb.surface, b.triangles, pb.sphere, fixed_b},
-                         options.sphere.threads);
+  std::vector<int> centres_a, centres_b;
+  for (const FeaturePair& f : features) centres_a.push_back(f.a), centres_b.push_back(f.b);
+  MapOptimizer optimizer({pa.surface, a.triangles, pa.sphere, fixed_a, centres_a},
+                         {pb.surface, b.triangles, pb.sphere, fixed_b, centres_b}, options.sphere.threads);
   bool cancelled = false;
   const auto going_on = [&](double done) {
     cancelled = progress && !progress(done, "optimizing the map");

@@ -15,6 +15,7 @@ namespace cmaps {
 
 MapOptimizer::Side::Side(MapSide side)
     : surface(side.surface), sampled(side.sampled), sphere(side.sphere), fixed(std::move(side.fixed)),
+      centres(std::move(side.centres)),
       neighbours(triangle_neighbours(surface.triangles)) {
   const size_t n = surface.vertices.size();
   if (sphere.size() != n || fixed.size() != n)

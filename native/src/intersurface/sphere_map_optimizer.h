@@ -46,6 +46,9 @@ struct MapSide {
   const std::vector<Triangle>& sampled;
   std::vector<Vec3>& sphere;  // one unit vector per vertex of `surface`, moved in place
   std::vector<char> fixed;    // per vertex: never moves
+  // Fixed vertices the region moves centre caps on (the features), so that
+  // what is squeezed or spread around one can be scaled about it.
+  std::vector<int> centres = {};
 };
 
 class MapOptimizer {
@@ -57,7 +60,7 @@ class MapOptimizer {
   // until no vertex moves more than `tolerance` (relative to its star) or
   // `sweeps`; with_regions, the first round's sweeps of each side follow
   // region moves from coarse to fine. `keep_going` is asked between sweeps
-  // and every 256 caps of the region moves; false stops early.
+  // and every 256 evenly spread caps or each centred cap; false stops early.
   void optimize(int rounds, int sweeps, double tolerance, bool with_regions,
                 const std::function<bool(double)>& keep_going);
 
@@ -66,7 +69,7 @@ class MapOptimizer {
   void refresh(Side& moving, Side& other);
   double move(Side& moving, Side& other, int v) const;
   bool regions(Side& moving, Side& other, const std::function<bool()>& keep_going) const;
-  double region_move(Side& moving, Side& other, const Vec3& centre, double radius) const;
+  double region_move(Side& moving, Side& other, const Vec3& centre, double radius, bool scale_only) const;
   std::unique_ptr<Side> a_, b_;
   std::unique_ptr<SphereLocator> on_other_;  // during a pass: locates on the side that stays put
   int threads_;

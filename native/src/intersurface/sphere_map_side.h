@@ -47,6 +47,7 @@ struct MapOptimizer::Side {
   const std::vector<Triangle>& sampled;
   std::vector<Vec3>& sphere;
   std::vector<char> fixed;
+  std::vector<int> centres;
   double area = 0;
   std::vector<std::vector<int>> faces_of;    // per vertex: its triangles of `surface`
   std::vector<std::vector<int>> sampled_of;  // per vertex: its sampled triangles

@@ -13,9 +13,14 @@
 // triangle check keeps the others from crossing them. The three parameters
 // (t, a) take one gradient step (central differences) with a backtracking
 // line search, repeated while the energy drops; caps run from a radius of 1
-// radian down to a sixteenth, centres evenly spread. (Session 11 tried
-// shifts alone, one step per cap at three radii, and did not keep them:
-// BENCHMARKS.md.)
+// radian down to a sixteenth, centres evenly spread. Then caps centred where
+// evenly spread ones fall short, down to a 256th of a radian: on each
+// feature, which such caps cannot scale about (it stays put, so they would
+// push its neighbours over it; a centred cap only scales, t = 0), and on
+// the most distorted triangles, whose trouble is often finer than a
+// sixteenth (the tip of the cow's tail, 300 times too small on the horse).
+// (Session 11 tried shifts alone, one step per cap at three radii, and did
+// not keep them: BENCHMARKS.md.)
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
@@ -28,6 +33,10 @@ namespace {
 
 constexpr int kLevels = 5;   // cap radii 1, 1/2, ..., 1/16 radian
 constexpr int kRepeats = 4;  // steps per cap while the energy drops
+// Centred caps: on the features and on a corner of each of the 32 sampled
+// triangles that carry the most energy, radii 1, 1/2, ..., 1/256 radian.
+constexpr int kHeavy = 32;
+constexpr int kCentredLevels = 9;
 
 // The i-th of n points spread evenly over the sphere (a Fibonacci lattice).
 Vec3 fibonacci_point(int i, int n) {
@@ -57,7 +66,7 @@ int walk(const std::vector<Triangle>& triangles, const std::vector<std::array<in
 
 }  // namespace
 
-double MapOptimizer::region_move(Side& s, Side& o, const Vec3& c, double radius) const {
+double MapOptimizer::region_move(Side& s, Side& o, const Vec3& c, double radius, bool scale_only) const {
   const Vec3 e1 = c.unitOrthogonal(), e2 = c.cross(e1);
   const double cos_radius = std::cos(radius);
   // The cap's movable vertices, their tangent coordinates at c and falloff.
@@ -146,8 +155,8 @@ double MapOptimizer::region_move(Side& s, Side& o, const Vec3& c, double radius)
   const double e0 = energy_at(Eigen::Vector3d::Zero());
   if (!std::isfinite(e0)) return 0;
   constexpr double h = 1e-4;
-  Eigen::Vector3d gradient;
-  for (int k = 0; k < 3; ++k) {
+  Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
+  for (int k = scale_only ? 2 : 0; k < 3; ++k) {
     const Eigen::Vector3d d = h * Eigen::Vector3d::Unit(k);
     const double plus = energy_at(d), minus = energy_at(-d);
     if (!std::isfinite(plus) || !std::isfinite(minus)) return 0;
@@ -181,7 +190,22 @@ bool MapOptimizer::regions(Side& s, Side& o, const std::function<bool()>& keep_g
       if (i % 256 == 0 && !keep_going()) return false;  // a fine level of a large mesh takes seconds
       const Vec3 centre = fibonacci_point(i, centres);
       for (int repeat = 0; repeat < kRepeats; ++repeat)
-        if (!(region_move(s, o, centre, radius) > 0)) break;
+        if (!(region_move(s, o, centre, radius, false) > 0)) break;
+    }
+  }
+  std::vector<std::pair<double, int>> heavy;  // (minus the energy, sampled triangle)
+  for (int f = 0; f < int(s.sampled.size()); ++f)
+    heavy.push_back({-s.triangle_energy(f, [&](int u) -> const Image& { return s.images[u]; }), f});
+  const int count = std::min<int>(kHeavy, int(heavy.size()));
+  std::partial_sort(heavy.begin(), heavy.begin() + count, heavy.end());
+  std::vector<int> centres = s.centres;
+  for (int i = 0; i < count; ++i) centres.push_back(s.sampled[heavy[i].second][0]);
+  for (int level = 0; level < kCentredLevels; ++level) {
+    const double radius = std::ldexp(1.0, -level);
+    for (int v : centres) {
+      if (!keep_going()) return false;
+      for (int repeat = 0; repeat < kRepeats; ++repeat)
+        if (!(region_move(s, o, s.sphere[v], radius, s.fixed[v]) > 0)) break;
     }
   }
   return true;
