@@ -16,8 +16,8 @@
 // radian down to a sixteenth, centres evenly spread. Then caps centred where
 // evenly spread ones fall short, down to a 256th of a radian: on each
 // feature, which such caps cannot scale about (it stays put, so they would
-// push its neighbours over it; a centred cap only scales, t = 0), and on
-// the most distorted triangles, whose trouble is often finer than a
+// push its neighbours over it; a cap centred on it only scales, t = 0), and
+// on the most distorted triangles, whose trouble is often finer than a
 // sixteenth (the tip of the cow's tail, 300 times too small on the horse).
 // (Session 11 tried shifts alone, one step per cap at three radii, and did
 // not keep them: BENCHMARKS.md.)
@@ -198,11 +198,11 @@ bool MapOptimizer::regions(Side& s, Side& o, const std::function<bool()>& keep_g
     heavy.push_back({-s.triangle_energy(f, [&](int u) -> const Image& { return s.images[u]; }), f});
   const int count = std::min<int>(kHeavy, int(heavy.size()));
   std::partial_sort(heavy.begin(), heavy.begin() + count, heavy.end());
-  std::vector<int> centres = s.centres;
-  for (int i = 0; i < count; ++i) centres.push_back(s.sampled[heavy[i].second][0]);
+  std::vector<int> centred_on = s.centres;
+  for (int i = 0; i < count; ++i) centred_on.push_back(s.sampled[heavy[i].second][0]);
   for (int level = 0; level < kCentredLevels; ++level) {
     const double radius = std::ldexp(1.0, -level);
-    for (int v : centres) {
+    for (int v : centred_on) {
       if (!keep_going()) return false;
       for (int repeat = 0; repeat < kRepeats; ++repeat)
         if (!(region_move(s, o, s.sphere[v], radius, s.fixed[v]) > 0)) break;
