@@ -126,9 +126,12 @@ TEST(SphereMapOptimizer, CapsCentredOnAFeatureUndoASqueezeAroundIt) {
   std::vector<Vec3> start_a(sphere.vertices.size());
   for (std::size_t v = 0; v < start_a.size(); ++v) start_a[v] = squeezed(sphere.vertices[v], 1.0, 0.97);
   std::vector<char> fixed(sphere.vertices.size(), 0);
-  int pole = -1;
-  for (std::size_t v = 0; v < fixed.size(); ++v)
-    if (std::abs(sphere.vertices[v].z()) > 1 - 1e-12) fixed[v] = 1, pole = sphere.vertices[v].z() > 0 ? int(v) : pole;
+  int pole = -1;  // the north pole; both poles are features
+  for (std::size_t v = 0; v < fixed.size(); ++v) {
+    const double z = sphere.vertices[v].z();
+    if (std::abs(z) > 1 - 1e-12) fixed[v] = 1;
+    if (z > 1 - 1e-12) pole = int(v);
+  }
   ASSERT_GE(pole, 0);
   const auto total = [&](const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
     return energy(sphere, a, sphere, b) + energy(sphere, b, sphere, a);
