@@ -44,16 +44,24 @@ inline Vec3 nudged_corner(const TriangleMesh& mesh, int t, int k) {
          kCornerNudge * (mesh.vertices[c[(k + 1) % 3]] + mesh.vertices[c[(k + 2) % 3]]);
 }
 
-// Largest distance between a corner's image and its vertex's image
+// Per corner, the distance between its image and its vertex's image
 // (`vertex_images`, positions on the target), relative to `scale`: a corner
 // image lands next to its vertex's, on whichever side of a seam.
+inline std::vector<double> corner_offsets(const std::vector<SurfacePoint>& corners, const TriangleMesh& source,
+                                          const TriangleMesh& target, const std::vector<Vec3>& vertex_images,
+                                          double scale) {
+  const std::vector<Vec3> at = surface_positions(target, corners);
+  std::vector<double> offsets(at.size());
+  for (std::size_t i = 0; i < at.size(); ++i)
+    offsets[i] = (at[i] - vertex_images[source.triangles[i / 3][i % 3]]).norm() / scale;
+  return offsets;
+}
+
+// The largest of those.
 inline double corner_offset(const std::vector<SurfacePoint>& corners, const TriangleMesh& source,
                             const TriangleMesh& target, const std::vector<Vec3>& vertex_images, double scale) {
-  const std::vector<Vec3> at = surface_positions(target, corners);
-  double worst = 0;
-  for (std::size_t i = 0; i < at.size(); ++i)
-    worst = std::max(worst, (at[i] - vertex_images[source.triangles[i / 3][i % 3]]).norm());
-  return worst / scale;
+  const std::vector<double> offsets = corner_offsets(corners, source, target, vertex_images, scale);
+  return offsets.empty() ? 0 : *std::max_element(offsets.begin(), offsets.end());
 }
 
 }  // namespace cmaps::test

@@ -1,12 +1,13 @@
-// The patch-wise map of genus >= 1 pairs: stretch-reweighted patch
-// embeddings (intersurface/patch_parameterization.h) and the optimization
-// that slides path vertices along their paths
-// (intersurface/patch_map_optimization.h).
+// The patch-wise map of genus >= 1 pairs: the energy its optimizers lower
+// (intersurface/chord_energy.h), stretch-reweighted patch embeddings
+// (intersurface/patch_parameterization.h) and the optimization that slides
+// path vertices along their paths (intersurface/patch_map_optimization.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "consistent_maps/mesh_io.h"
+#include "intersurface/chord_energy.h"
 #include "intersurface/consistent_partition.h"
 #include "intersurface/cross_patch_optimization.h"
 #include "intersurface/patch_map_optimization.h"
@@ -23,6 +24,29 @@ using test::stretched_copy;
 double signed_area(const std::unordered_map<int, Vec2>& uv, const Triangle& t) {
   const Vec2 x = uv.at(t[1]) - uv.at(t[0]), y = uv.at(t[2]) - uv.at(t[0]);
   return 0.5 * (x.x() * y.y() - x.y() * y.x());
+}
+
+TEST(ChordEnergy, AFoldCostsMoreTheThinnerItIs) {
+  // A right triangle onto images on a plane whose normal points against
+  // their chord triangle: folds, one as wide as the source and one squeezed
+  // to a 1,000th of its height. The squeeze must cost: with a fold charged
+  // a fixed density alone, the optimizers thinned folded triangles into
+  // needles for nothing (feline -> cup's mean was 3.6 million).
+  const Vec3 p[3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  const SourceTriangle s = source_triangle(p);
+  const auto energy = [&](double height) {
+    const Image q[3] = {{{0, 0, 0}, {0, 0, -1}}, {{1, 0, 0}, {0, 0, -1}}, {{0, height, 0}, {0, 0, -1}}};
+    const Image* image[3] = {&q[0], &q[1], &q[2]};
+    return triangle_energy(s, image);
+  };
+  const double wide = energy(1), thin = energy(1e-3);
+  EXPECT_DOUBLE_EQ(wide, s.area * (4 + kFoldPenalty));  // an isometry's 4, folded
+  // |J|^2 + |J^-1|^2 = 1 + h^2 + 1 + 1 / h^2 for the squeeze to height h.
+  EXPECT_NEAR(thin, s.area * (2 + 1e-6 + 1e6 + kFoldPenalty), 1e-6 * thin);
+  // Unfolded (normals along +z), the same images cost their density alone.
+  const Image up[3] = {{{0, 0, 0}, {0, 0, 1}}, {{1, 0, 0}, {0, 0, 1}}, {{0, 1, 0}, {0, 0, 1}}};
+  const Image* image[3] = {&up[0], &up[1], &up[2]};
+  EXPECT_DOUBLE_EQ(triangle_energy(s, image), 4 * s.area);
 }
 
 TEST(PatchParameterization, StretchReweightingLowersStretchAndStaysBijective) {
