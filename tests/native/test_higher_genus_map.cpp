@@ -22,7 +22,6 @@
 namespace cmaps {
 namespace {
 
-using test::corner_offset;
 using test::corner_offsets;
 using test::diagonal;
 using test::expect_exact_features;
