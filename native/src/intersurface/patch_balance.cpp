@@ -19,6 +19,13 @@ constexpr double kEdgeClamp = 0.1;    // a new path vertex lies no nearer an edg
 // other sides (kitten - rocker arm medians 16 / 14 -> 51 / 73 with 1e-12).
 constexpr double kLevelMargin = 1e-3;
 constexpr int kBisections = 40;
+// A new path stays at least this fraction of a typical input triangle's size
+// (and of its distance to its nearer end, so two paths leaving one base
+// vertex keep an angle) from the other paths: where a level curve hugs a
+// patch's other side, the patch is pinched into slivers that its embedding
+// blows up into canonical area mapping to next to nothing (feline - skull).
+constexpr double kPinch = 0.01;
+constexpr double kShortestPart = 0.2;  // a path goes all, half or a quarter of the way to its patches' balance
 
 double triangle_area(const PartitionSide& side, int f) {
   const Triangle& t = side.mesh.triangles()[f];
@@ -83,7 +90,11 @@ class PathRetrace {
         areas_.push_back(triangle_area(side, f));
         for (int v : side.mesh.triangles()[f])
           if (!boundary.count(v) && !is_end(v) && !interior_.count(v)) interior_.emplace(v, int(interior_.size()));
+          else if (boundary.count(v) && !is_end(v)) walls_.insert(v);
       }
+    double area = 0;
+    for (int f = 0; f < int(side.patch.size()); ++f) area += triangle_area(side, f);
+    scale_ = std::sqrt(area / side.input_triangles);
     solve();
   }
 
@@ -101,7 +112,7 @@ class PathRetrace {
   // curve does not run from one end to the other.
   bool retrace(double t) {
     std::vector<Crossing> crossings;
-    if (interior_.empty() || !trace(t, crossings)) return false;
+    if (interior_.empty() || !trace(t, crossings) || pinches(crossings)) return false;
     const int triangles_before = int(side_.mesh.triangles().size());
     std::unordered_set<int> level{ends_[0], ends_[1]};
     std::vector<int> path{ends_[0]};
@@ -154,6 +165,20 @@ class PathRetrace {
   };
 
   bool is_end(int v) const { return v == ends_[0] || v == ends_[1]; }
+
+  // Whether a path through the crossings would come too near another path (kPinch).
+  bool pinches(const std::vector<Crossing>& crossings) const {
+    const EditableMesh& mesh = side_.mesh;
+    for (const Crossing& c : crossings) {
+      const double at = std::clamp(c.at, kEdgeClamp, 1 - kEdgeClamp);
+      const Vec3 x = (1 - at) * mesh.position(c.below) + at * mesh.position(c.above);
+      const double end = std::min((x - mesh.position(ends_[0])).norm(), (x - mesh.position(ends_[1])).norm());
+      const double limit = kPinch * std::min(scale_, end);
+      for (int w : walls_)
+        if ((x - mesh.position(w)).squaredNorm() < limit * limit) return true;
+    }
+    return false;
+  }
 
   double value(int f, int v, double t) const {
     if (is_end(v)) return t;
@@ -251,6 +276,8 @@ class PathRetrace {
   std::vector<int> faces_;     // the two patches' triangles (after a retrace, the new ones too)
   std::vector<double> areas_;  // per triangle of faces_ before the retrace
   std::unordered_map<int, int> interior_;  // mesh vertex -> unknown
+  std::unordered_set<int> walls_;          // the two patches' other sides (no ends)
+  double scale_ = 0;                       // the side's typical input triangle size
   Eigen::VectorXd phi0_, psi_;
 };
 
@@ -287,13 +314,19 @@ PatchBalance balance_patch_areas(ConsistentPartition& partition, int rounds) {
       if (p < 0 || q < 0 || p == q || in_hole[p] || in_hole[q] || shares_another_path(p, q, e)) continue;
       const double ra = own[0][p] / own[0][q], rb = own[1][p] / own[1][q];
       if (std::abs(std::log(ra / rb)) < std::log1p(kTolerance)) continue;
-      // Both sides meet halfway (moving one side alone is worse on every pair measured).
+      // Both sides meet halfway (moving one side alone is worse on every pair
+      // measured), or, where that path would pinch a patch, go part of the way.
       const double target = std::sqrt(ra * rb);
       for (int s = 0; s < 2; ++s) {
         PathRetrace retrace(partition.sides[s], e, p, q);
-        if (!retrace.retrace(retrace.level_for(target / (1 + target)))) continue;
-        ++moved;
-        own[s] = area_shares(partition.sides[s], patches);
+        const double now = s == 0 ? ra : rb;
+        for (double part = 1; part > kShortestPart; part /= 2) {
+          const double ratio = std::pow(now, 1 - part) * std::pow(target, part);
+          if (!retrace.retrace(retrace.level_for(ratio / (1 + ratio)))) continue;
+          ++moved;
+          own[s] = area_shares(partition.sides[s], patches);
+          break;
+        }
       }
     }
     result.retraced += moved;

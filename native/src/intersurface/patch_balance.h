@@ -10,7 +10,10 @@
 // their area in the ratio halfway (geometrically) between the sides'. Such a
 // level set is one simple curve between the path's ends, so the base
 // connectivity, the cyclic orders at the base vertices and every other path
-// stay as they are. Rounds over all paths spread the balance over the base mesh.
+// stay as they are. A level curve that would run along another path (the
+// patch between them pinched into slivers) is not taken: the path goes half
+// or a quarter of the way instead, or stays. Rounds over all paths spread
+// the balance over the base mesh.
 #pragma once
 #include "intersurface/consistent_partition.h"
 
