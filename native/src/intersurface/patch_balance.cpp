@@ -77,11 +77,12 @@ double share_below(const double d[3]) {
 // both is 0 or 1 by the triangle it is seen from).
 class PathRetrace {
  public:
-  PathRetrace(PartitionSide& side, int edge, int first, int second)
-      : side_(side), edge_(edge), first_(first), second_(second) {
+  // `scale`: the side's typical input triangle size (see kPinch).
+  PathRetrace(PartitionSide& side, int edge, int first, int second, double scale)
+      : side_(side), edge_(edge), first_(first), second_(second), scale_(scale) {
     const auto& path = side.paths[edge];
     ends_ = {path.front(), path.back()};
-    std::unordered_set<int> boundary;
+    std::unordered_set<int> boundary, wall;
     for (int e = 0; e < int(side.paths.size()); ++e)
       if (e != edge) boundary.insert(side.paths[e].begin(), side.paths[e].end());
     for (int f = 0; f < int(side.patch.size()); ++f)
@@ -90,11 +91,10 @@ class PathRetrace {
         areas_.push_back(triangle_area(side, f));
         for (int v : side.mesh.triangles()[f])
           if (!boundary.count(v) && !is_end(v) && !interior_.count(v)) interior_.emplace(v, int(interior_.size()));
-          else if (boundary.count(v) && !is_end(v)) walls_.insert(v);
+          else if (boundary.count(v) && !is_end(v)) wall.insert(v);
       }
-    double area = 0;
-    for (int f = 0; f < int(side.patch.size()); ++f) area += triangle_area(side, f);
-    scale_ = std::sqrt(area / side.input_triangles);
+    for (int v : wall) walls_.push_back(side.mesh.position(v));
+    std::sort(walls_.begin(), walls_.end(), [](const Vec3& p, const Vec3& q) { return p.x() < q.x(); });
     solve();
   }
 
@@ -174,8 +174,11 @@ class PathRetrace {
       const Vec3 x = (1 - at) * mesh.position(c.below) + at * mesh.position(c.above);
       const double end = std::min((x - mesh.position(ends_[0])).norm(), (x - mesh.position(ends_[1])).norm());
       const double limit = kPinch * std::min(scale_, end);
-      for (int w : walls_)
-        if ((x - mesh.position(w)).squaredNorm() < limit * limit) return true;
+      // Only walls within the limit in x can be within it.
+      auto w = std::lower_bound(walls_.begin(), walls_.end(), x.x() - limit,
+                                [](const Vec3& p, double at) { return p.x() < at; });
+      for (; w != walls_.end() && w->x() <= x.x() + limit; ++w)
+        if ((x - *w).squaredNorm() < limit * limit) return true;
     }
     return false;
   }
@@ -276,8 +279,8 @@ class PathRetrace {
   std::vector<int> faces_;     // the two patches' triangles (after a retrace, the new ones too)
   std::vector<double> areas_;  // per triangle of faces_ before the retrace
   std::unordered_map<int, int> interior_;  // mesh vertex -> unknown
-  std::unordered_set<int> walls_;          // the two patches' other sides (no ends)
-  double scale_ = 0;                       // the side's typical input triangle size
+  double scale_;
+  std::vector<Vec3> walls_;                // the two patches' other sides (no ends), by x
   Eigen::VectorXd phi0_, psi_;
 };
 
@@ -304,6 +307,12 @@ PatchBalance balance_patch_areas(ConsistentPartition& partition, int rounds) {
     return false;
   };
 
+  std::array<double, 2> scale;
+  for (int s = 0; s < 2; ++s) {
+    double area = 0;
+    for (int f = 0; f < int(partition.sides[s].patch.size()); ++f) area += triangle_area(partition.sides[s], f);
+    scale[s] = std::sqrt(area / partition.sides[s].input_triangles);
+  }
   PatchBalance result;
   std::array<std::vector<double>, 2> own = {area_shares(partition.sides[0], patches), area_shares(partition.sides[1], patches)};
   result.worst_before = worst_ratio(own[0], own[1]);
@@ -318,7 +327,7 @@ PatchBalance balance_patch_areas(ConsistentPartition& partition, int rounds) {
       // measured), or, where that path would pinch a patch, go part of the way.
       const double target = std::sqrt(ra * rb);
       for (int s = 0; s < 2; ++s) {
-        PathRetrace retrace(partition.sides[s], e, p, q);
+        PathRetrace retrace(partition.sides[s], e, p, q, scale[s]);
         const double now = s == 0 ? ra : rb;
         for (double part = 1; part > kShortestPart; part /= 2) {
           const double ratio = std::pow(now, 1 - part) * std::pow(target, part);
