@@ -176,7 +176,7 @@ class PathRetrace {
       const double limit = kPinch * std::min(scale_, end);
       // Only walls within the limit in x can be within it.
       auto w = std::lower_bound(walls_.begin(), walls_.end(), x.x() - limit,
-                                [](const Vec3& p, double at) { return p.x() < at; });
+                                [](const Vec3& p, double low) { return p.x() < low; });
       for (; w != walls_.end() && w->x() <= x.x() + limit; ++w)
         if ((x - *w).squaredNorm() < limit * limit) return true;
     }
@@ -279,7 +279,7 @@ class PathRetrace {
   std::vector<int> faces_;     // the two patches' triangles (after a retrace, the new ones too)
   std::vector<double> areas_;  // per triangle of faces_ before the retrace
   std::unordered_map<int, int> interior_;  // mesh vertex -> unknown
-  double scale_;
+  double scale_;                           // the side's typical input triangle size
   std::vector<Vec3> walls_;                // the two patches' other sides (no ends), by x
   Eigen::VectorXd phi0_, psi_;
 };
