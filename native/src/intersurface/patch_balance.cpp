@@ -161,7 +161,7 @@ class PathRetrace {
  private:
   struct Crossing {
     int below, above;
-    double at;  // from `below` towards `above`
+    double at;  // from `below` towards `above`, kEdgeClamp away from both
   };
 
   bool is_end(int v) const { return v == ends_[0] || v == ends_[1]; }
@@ -170,8 +170,7 @@ class PathRetrace {
   bool pinches(const std::vector<Crossing>& crossings) const {
     const EditableMesh& mesh = side_.mesh;
     for (const Crossing& c : crossings) {
-      const double at = std::clamp(c.at, kEdgeClamp, 1 - kEdgeClamp);
-      const Vec3 x = (1 - at) * mesh.position(c.below) + at * mesh.position(c.above);
+      const Vec3 x = (1 - c.at) * mesh.position(c.below) + c.at * mesh.position(c.above);
       const double end = std::min((x - mesh.position(ends_[0])).norm(), (x - mesh.position(ends_[1])).norm());
       const double limit = kPinch * std::min(scale_, end);
       // Only walls within the limit in x can be within it.
