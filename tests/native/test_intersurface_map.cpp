@@ -306,21 +306,24 @@ TEST(IntersurfaceMap, CactusPosesMapDirectlyWithinOnePercent) {
 }
 
 // Pose 2 onto pose 0 with 12 features, the direct map's paths left as
-// walls: the sphere's map has the lower summed median (8.23 against 8.33,
-// within 5 %) but folds about 200 sampled triangles (1 % of the 21,036) and
-// lies 1.5 % off the truth; the direct map folds none and lies 0.7 % off.
-// Medians that close are a tie, and clearly fewer folds break it. (With its
-// vertices crossing the paths the direct map's median is the lower: 8.17.)
-TEST(IntersurfaceMap, MediansWithinFivePercentGoToTheMapWithFewerFolds) {
+// walls. Until the patches' areas were matched (session 24) the sphere's
+// map had the lower summed median here (8.23 against 8.33, within 5 %) and
+// the direct map won the tie by its folds (none against about 200 sampled
+// triangles, 1 % of the 21,036). Now the direct map has the lower median
+// outright (measured 8.20 against 8.23) and lies 0.54 / 0.48 % off the truth
+// (0.73 / 0.63 % before). The rule for ties is checked on sphere restarts
+// (IntersurfaceMap.CactusRefitsBothMapsWhenTheMedianDrops) and in Python.
+TEST(IntersurfaceMap, PosesWithWallsMapDirectlyBelowTheSpheresMedianAndFolds) {
   IntersurfaceOptions walls;
   walls.cross_sweeps = 0;
   const CactusMap m = map_cactus_poses(2, 0, 12, walls);
   const IntersurfaceResult& r = m.map;
   EXPECT_EQ(r.method, IntersurfaceMethod::partition);
-  EXPECT_GT(r.partition_median_dirichlet, r.sphere_median_dirichlet);  // the tie the folds decide
-  EXPECT_LT(r.partition_median_dirichlet, 1.05 * r.sphere_median_dirichlet);
-  EXPECT_LT(m.forward, 0.01);
-  EXPECT_LT(m.backward, 0.01);
+  EXPECT_LT(r.partition_median_dirichlet, r.sphere_median_dirichlet);
+  ASSERT_EQ(r.restart_flipped.size(), 1u);  // the sphere's map, not kept
+  EXPECT_GT(r.restart_flipped[0], 100);
+  EXPECT_LT(m.forward, 0.007);
+  EXPECT_LT(m.backward, 0.007);
   EXPECT_LE(r.distortion_a_to_b.flipped + r.distortion_b_to_a.flipped, 3);
   expect_exact_features(r, m.a, m.b);
 }

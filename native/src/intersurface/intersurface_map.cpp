@@ -396,8 +396,9 @@ void map_partition(ConsistentPartition& partition, const ClosedMesh& closed_a, c
 
   stage = Clock::now();
   if (progress && !progress(0.3, "optimizing the map")) throw Cancelled();
-  optimize_patch_map(partition.sides[0], uv_a, partition.sides[1], uv_b,
-                     options.optimize_rounds > 0 ? options.optimize_sweeps : 0, options.sphere.threads);
+  const int sweeps = options.optimize_rounds > 0 ? options.optimize_sweeps : 0;
+  optimize_patch_map(partition.sides[0], uv_a, partition.sides[1], uv_b, sweeps, options.sphere.threads,
+                     sweeps > 0 ? kPatchAreaRounds : 0);
   // Then across the paths (cross_patch_optimization.h).
   CrossPatchMap across(partition, uv_a, uv_b);
   if (options.optimize_rounds > 0)

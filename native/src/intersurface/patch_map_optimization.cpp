@@ -8,12 +8,14 @@
 #include "common/parallel_for.h"
 #include "intersurface/chord_energy.h"
 #include "intersurface/descent_step.h"
+#include "intersurface/patch_embedding.h"
 #include "intersurface/patch_locator.h"
 
 namespace cmaps {
 namespace {
 
 constexpr int kHalvings = 10;  // path slides' line search: step, step / 2, ...
+constexpr double kRatioClamp = 1e-8;  // area ratios beyond it (degenerate images) count as it
 
 // One patch, both directions: the source's triangles mapped onto the target
 // and the target's triangles mapped back, as functions of one free source
@@ -177,6 +179,27 @@ class PatchEnergy {
 
   const std::unordered_map<int, Vec2>& uv() const { return uv_; }
 
+  // Per source vertex: how much the map scales area around it, the
+  // area-weighted geometric mean over its triangles of image area (chord
+  // triangle, target scaled) over source area; 1 where it has no area.
+  std::unordered_map<int, double> area_ratios() const {
+    std::vector<double> log_sum(vertex_.size(), 0), weight(vertex_.size(), 0);
+    for (int f = 0; f < int(triangle_.size()); ++f) {
+      const double area = shape_[f].area;
+      if (area <= 0) continue;
+      const auto& t = triangle_[f];
+      const double image = 0.5 * (image_[t[1]].position - image_[t[0]].position)
+                                     .cross(image_[t[2]].position - image_[t[0]].position)
+                                     .norm();
+      const double ratio = std::clamp(image / area, kRatioClamp, 1 / kRatioClamp);
+      for (int i : t) log_sum[i] += area * std::log(ratio), weight[i] += area;
+    }
+    std::unordered_map<int, double> ratio;
+    for (int i = 0; i < int(vertex_.size()); ++i)
+      ratio[vertex_[i]] = weight[i] > 0 ? std::exp(log_sum[i] / weight[i]) : 1;
+    return ratio;
+  }
+
  private:
   // The vertices of a side's triangles, each once, in index order.
   static std::vector<int> sorted_corners(const PartitionSide& side, const std::vector<int>& faces) {
@@ -297,11 +320,56 @@ bool slide(const PathSlide& s, PatchEnergy& first, PatchEnergy& second) {
   return false;
 }
 
+// The global step before the local sweeps, which move one vertex at a time
+// and so barely spread a region the map squeezes as a whole (a protrusion of
+// the source onto a small part of the target). The patch's interior is
+// embedded again and again, each weight scaled by the root of the map's area
+// ratio at the neighbour it points to (stretch reweighting, Yoshizawa et al.
+// 2004, with the target's area pulled back instead of the source's own):
+// where the target gets too little area, the neighbours pull less and the
+// region opens up. Weights stay positive, so each embedding is bijective;
+// each round is kept only if it lowers both directions' energy.
+template <class MakeEnergy>
+void match_target_areas(const PartitionSide& source, const std::vector<int>& faces, const std::vector<char>& on_path,
+                        std::unordered_map<int, Vec2>& uv, const std::unordered_map<int, double>& pull,
+                        int rounds, std::unique_ptr<PatchEnergy>& energy, const MakeEnergy& make_energy) {
+  std::unordered_map<int, Vec2> points;
+  for (const auto& [v, p] : uv)
+    if (on_path[v]) points.emplace(v, p);
+  PatchEmbedding embedding(source, faces, points);
+  if (embedding.empty()) return;
+  PatchEmbedding::Weights weight = embedding.mean_value_weights();
+  for (auto& row : weight)
+    for (auto& [u, w] : row) w *= pull.at(u);
+  double ignored = 0, best = energy->total(ignored);
+  for (int round = 0; round < rounds; ++round) {
+    const std::unordered_map<int, double> ratio = energy->area_ratios();
+    bool lowered = false;
+    // The ratio's root first, then its fourth and eighth: a full step can overshoot.
+    for (double power = 0.5; power > 0.1 && !lowered; power *= 0.5) {
+      PatchEmbedding::Weights next_weight = weight;
+      for (auto& row : next_weight)
+        for (auto& [u, w] : row) w *= std::pow(ratio.at(u), power);
+      embedding.solve(next_weight);
+      std::unordered_map<int, Vec2> kept = uv;
+      uv = points;
+      std::unique_ptr<PatchEnergy> next = make_energy();
+      const double e = next->total(ignored);
+      if (e < best) {
+        best = e, energy = std::move(next), weight = std::move(next_weight), lowered = true;
+      } else {
+        uv = std::move(kept);
+      }
+    }
+    if (!lowered) return;
+  }
+}
+
 }  // namespace
 
 MapOptimization optimize_patch_map(const PartitionSide& source, PatchParameterization& source_uv,
                                    const PartitionSide& target, const PatchParameterization& target_uv,
-                                   int sweeps, int threads) {
+                                   int sweeps, int threads, int area_rounds) {
   const int patches = int(source_uv.uv.size());
   std::vector<std::vector<int>> faces(patches), target_faces(patches);
   for (int f = 0; f < int(source.patch.size()); ++f) faces[source.patch[f]].push_back(f);
@@ -317,9 +385,14 @@ MapOptimization optimize_patch_map(const PartitionSide& source, PatchParameteriz
   parallel_for(
       patches, threads,
       [&](int t) {
-        energy[t] = std::make_unique<PatchEnergy>(source, source_uv.uv[t], faces[t], target, target_uv.uv[t],
-                                                  target_faces[t], scale);
+        const auto make_energy = [&] {
+          return std::make_unique<PatchEnergy>(source, source_uv.uv[t], faces[t], target, target_uv.uv[t],
+                                               target_faces[t], scale);
+        };
+        energy[t] = make_energy();
         before[t] = energy[t]->total(area[t]);
+        match_target_areas(source, faces[t], on_path, source_uv.uv[t], source_uv.pull[t], area_rounds, energy[t],
+                           make_energy);
         for (const auto& [v, p] : source_uv.uv[t])
           if (!on_path[v]) free[t].push_back(v);
         std::sort(free[t].begin(), free[t].end());

@@ -7,7 +7,10 @@
 // scaled to the source's area), never so far that a triangle of the source's
 // embedding turns over. The embedding stays a bijection onto each canonical
 // triangle and continuous across the paths, so the map stays continuous and
-// bijective; the paths themselves and the base vertices do not move.
+// bijective; the paths themselves and the base vertices do not move. Before
+// the sweeps, each patch's interior is embedded again with weights scaled by
+// the map's area ratio (a global step the vertex moves cannot take; kept
+// only where it lowers the energy).
 #pragma once
 #include "intersurface/patch_parameterization.h"
 
@@ -18,8 +21,11 @@ struct MapOptimization {
   int moves = 0;
 };
 
+// Rounds of re-embedding each patch for the target's areas (before the sweeps).
+constexpr int kPatchAreaRounds = 10;
+
 MapOptimization optimize_patch_map(const PartitionSide& source, PatchParameterization& source_uv,
                                    const PartitionSide& target, const PatchParameterization& target_uv,
-                                   int sweeps, int threads);
+                                   int sweeps, int threads, int area_rounds = kPatchAreaRounds);
 
 }  // namespace cmaps

@@ -1,15 +1,13 @@
 #include "intersurface/patch_parameterization.h"
 
-#include <Eigen/Sparse>
-#include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 
 #include "common/parallel_for.h"
-#include "consistent_maps/errors.h"
 #include "consistent_maps/intersurface_map.h"
+#include "intersurface/patch_embedding.h"
 #include "intersurface/patch_locator.h"
 
 namespace cmaps {
@@ -65,81 +63,15 @@ double stretch_of(const PartitionSide& side, const std::unordered_map<int, Vec2>
   return all_area > 0 ? std::sqrt(all / all_area) : 0;
 }
 
-// Tutte-style embedding of one patch's interior given positive weights and the fixed boundary.
-class PatchEmbedding {
- public:
-  PatchEmbedding(const PartitionSide& side, const std::vector<int>& faces, std::unordered_map<int, Vec2>& uv)
-      : side_(side), faces_(faces), uv_(uv) {
-    for (int f : faces)
-      for (int v : side.mesh.triangles()[f])
-        if (!uv.count(v) && !index_.count(v)) index_.emplace(v, int(index_.size()));
-  }
-
-  bool empty() const { return index_.empty(); }
-
-  // Mean-value weights of every interior vertex's neighbours.
-  std::vector<std::unordered_map<int, double>> mean_value_weights() const {
-    std::vector<std::unordered_map<int, double>> weight(index_.size());
-    for (int f : faces_) {
-      const Triangle& t = side_.mesh.triangles()[f];
-      for (int k = 0; k < 3; ++k) {
-        const auto it = index_.find(t[k]);
-        if (it == index_.end()) continue;
-        const Vec3 &p = side_.mesh.position(t[k]), &q = side_.mesh.position(t[(k + 1) % 3]),
-                   &r = side_.mesh.position(t[(k + 2) % 3]);
-        const double lq = (q - p).norm(), lr = (r - p).norm();
-        const double angle = std::atan2((q - p).cross(r - p).norm(), (q - p).dot(r - p));
-        const double half = std::tan(angle / 2);
-        for (const auto& [v, l] : {std::pair<int, double>{t[(k + 1) % 3], lq}, {t[(k + 2) % 3], lr}}) {
-          const double w = half / l;
-          weight[it->second][v] += std::isfinite(w) && w > 0 ? w : 1e-12;
-        }
-      }
-    }
-    return weight;
-  }
-
-  // Every interior vertex at the weighted mean of its neighbours.
-  void solve(const std::vector<std::unordered_map<int, double>>& weight) {
-    const int n = int(index_.size());
-    std::vector<Eigen::Triplet<double>> entries;
-    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
-    for (const auto& [v, i] : index_) {
-      double total = 0;
-      for (const auto& [u, w] : weight[i]) {
-        total += w;
-        const auto j = index_.find(u);
-        if (j != index_.end()) entries.emplace_back(i, j->second, -w);
-        else rhs.row(i) += w * uv_.at(u).transpose();
-      }
-      entries.emplace_back(i, i, total);
-    }
-    Eigen::SparseMatrix<double> matrix(n, n);
-    matrix.setFromTriplets(entries.begin(), entries.end());
-    // Every round's weights are positive on the same edges: one ordering serves them all.
-    if (!analyzed_) solver_.analyzePattern(matrix), analyzed_ = true;
-    solver_.factorize(matrix);
-    if (solver_.info() != Eigen::Success) throw Error("internal error: a patch parameterization is singular");
-    const Eigen::MatrixXd x = solver_.solve(rhs);
-    for (const auto& [v, i] : index_) uv_[v] = x.row(i).transpose();
-  }
-
- private:
-  const PartitionSide& side_;
-  const std::vector<int>& faces_;
-  std::unordered_map<int, Vec2>& uv_;
-  std::unordered_map<int, int> index_;  // interior vertex -> unknown
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> solver_;
-  bool analyzed_ = false;
-};
-
 // Canonical points of one patch: its boundary by arc length, its interior
 // by mean-value weights, then stretch reweighting: each round divides every
 // weight by the stretch at the neighbour it points to and solves again, so
 // crowded regions (a protrusion squeezed into a corner of the triangle) open
-// up. Weights stay positive, so every round is a bijective embedding.
+// up. Weights stay positive, so every round is a bijective embedding. `pull`
+// gets each vertex's product of the divisors kept.
 std::unordered_map<int, Vec2> parameterize(const PartitionSide& side, const BaseTriangle& base,
-                                           const std::vector<int>& faces, int stretch_rounds) {
+                                           const std::vector<int>& faces, int stretch_rounds,
+                                           std::unordered_map<int, double>& pull) {
   std::unordered_map<int, Vec2> uv;
   for (int k = 0; k < 3; ++k) {
     std::vector<int> path = side.paths[base.edges[k]];
@@ -154,10 +86,11 @@ std::unordered_map<int, Vec2> parameterize(const PartitionSide& side, const Base
   }
   PatchEmbedding embedding(side, faces, uv);
   if (embedding.empty()) return uv;
-  std::vector<std::unordered_map<int, double>> weight = embedding.mean_value_weights();
+  PatchEmbedding::Weights weight = embedding.mean_value_weights();
   embedding.solve(weight);
   std::unordered_map<int, double> sigma;
   double stretch = stretch_of(side, uv, faces, &sigma);
+  for (auto& [v, s] : sigma) pull[v] = 1;
   for (int round = 0; round < stretch_rounds && std::isfinite(stretch); ++round) {
     const std::unordered_map<int, Vec2> kept = uv;
     for (auto& row : weight)
@@ -169,6 +102,7 @@ std::unordered_map<int, Vec2> parameterize(const PartitionSide& side, const Base
       uv = kept;
       break;
     }
+    for (auto& [v, p] : pull) p /= std::max(sigma.at(v), 1e-12);
     stretch = next, sigma = std::move(next_sigma);
   }
   return uv;
@@ -238,7 +172,10 @@ PatchParameterization parameterize_patches(PartitionSide& side, const Consistent
   const std::vector<std::vector<int>> faces = faces_by_patch(side, patches);
   PatchParameterization result;
   result.uv.resize(patches);
-  parallel_for(patches, 2, [&](int t) { result.uv[t] = parameterize(side, partition.triangles[t], faces[t], stretch_rounds); });
+  result.pull.resize(patches);
+  parallel_for(patches, 2, [&](int t) {
+    result.uv[t] = parameterize(side, partition.triangles[t], faces[t], stretch_rounds, result.pull[t]);
+  });
   return result;
 }
 
