@@ -15,7 +15,7 @@ namespace cmaps {
 
 class PatchEmbedding {
  public:
-  // Per interior vertex (in the order of `interior()`): neighbour -> weight.
+  // Per interior vertex (rows in the order the constructor met them): neighbour -> weight.
   using Weights = std::vector<std::unordered_map<int, double>>;
 
   // `uv` holds the canonical points of the boundary (and only those, on
@@ -24,9 +24,6 @@ class PatchEmbedding {
   PatchEmbedding(const PartitionSide& side, const std::vector<int>& faces, std::unordered_map<int, Vec2>& uv);
 
   bool empty() const { return index_.empty(); }
-
-  // Interior vertex -> its row in Weights.
-  const std::unordered_map<int, int>& interior() const { return index_; }
 
   // Mean-value weights (Floater 2003) of every interior vertex's neighbours.
   Weights mean_value_weights() const;

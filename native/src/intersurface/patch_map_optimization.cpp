@@ -333,6 +333,7 @@ template <class MakeEnergy>
 void match_target_areas(const PartitionSide& source, const std::vector<int>& faces, const std::vector<char>& on_path,
                         std::unordered_map<int, Vec2>& uv, const std::unordered_map<int, double>& pull,
                         int rounds, std::unique_ptr<PatchEnergy>& energy, const MakeEnergy& make_energy) {
+  if (rounds <= 0) return;
   std::unordered_map<int, Vec2> points;
   for (const auto& [v, p] : uv)
     if (on_path[v]) points.emplace(v, p);

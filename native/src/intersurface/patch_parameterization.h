@@ -25,8 +25,9 @@ inline const Vec2 kCanonicalCorner[3] = {Vec2(0, 0), Vec2(1, 0), Vec2(0.5, 0.866
 
 struct PatchParameterization {
   std::vector<std::unordered_map<int, Vec2>> uv;  // per base triangle: mesh vertex -> canonical point
-  // Per base triangle: mesh vertex -> the factor on its neighbours' weights
-  // towards it (times its mean-value weight) in the embedding that gave uv.
+  // Per base triangle: mesh vertex -> the factor by which the stretch
+  // reweighting multiplied its neighbours' mean-value weights towards it in
+  // the embedding that gave uv (1 where it kept no round).
   std::vector<std::unordered_map<int, double>> pull;
 };
 
