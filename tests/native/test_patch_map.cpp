@@ -5,7 +5,10 @@
 // (intersurface/patch_map_optimization.h).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <utility>
 
 #include "consistent_maps/mesh_io.h"
 #include "intersurface/chord_energy.h"
@@ -13,6 +16,7 @@
 #include "intersurface/cross_patch_optimization.h"
 #include "intersurface/patch_map_optimization.h"
 #include "intersurface/patch_parameterization.h"
+#include "intersurface/split_triangles.h"
 #include "test_support.h"
 
 namespace cmaps {
@@ -229,6 +233,80 @@ TEST(CrossPatchMap, VerticesCrossPathsAndTheMapNearsTheTruth) {
     for (int k = 0; k < 3; ++k) on_partner += b.triangles[at.triangle][k] == vb ? at.barycentric[k] : 0;
     EXPECT_DOUBLE_EQ(on_partner, 1) << "feature " << va;
   }
+}
+
+// The chords of the cut input triangles of `side` as `map` (per input vertex
+// of side's mesh, on `target`) samples them: summed energy (triangle_energy,
+// target scaled to side's area) and folds.
+std::pair<double, int> cut_chords(const PartitionSide& side, const TriangleMesh& target,
+                                  const std::vector<InputLocation>& map, double scale) {
+  const SplitTriangles cut = split_triangles(side);
+  std::vector<Image> image(side.mesh.vertex_count());
+  for (std::size_t v = 0; v < map.size(); ++v) {
+    const Triangle& t = target.triangles[map[v].triangle];
+    const Vec3 &p = target.vertices[t[0]], &q = target.vertices[t[1]], &r = target.vertices[t[2]];
+    const auto& w = map[v].barycentric;
+    image[v] = {scale * (w[0] * p + w[1] * q + w[2] * r), (q - p).cross(r - p).normalized()};
+  }
+  double energy = 0;
+  int folds = 0;
+  for (int s = 0; s < int(cut.corners.size()); ++s) {
+    const double e = split_energy(cut, s, image, -1, nullptr);
+    if (std::isfinite(e)) energy += e;
+    folds += !(e < kFoldPenalty * cut.shape[s].area);
+  }
+  return {energy, folds};
+}
+
+TEST(CrossPatchMap, ChargesTheChordsOfInputTrianglesCutByPaths) {
+  // What the map gives back is sampled at the input vertices, so a triangle
+  // cut by a path shows through the chord of its corners' images. Eight ->
+  // skull (the first start's partition) has such chords folded and
+  // needle-thin; the optimization across paths lowers them, both ways. Every
+  // cut triangle is found, its corners turning as its pieces.
+  const TriangleMesh a = read_mesh(shared_mesh("higher-genus/eight.off"));
+  const TriangleMesh b = read_mesh(shared_mesh("higher-genus/skull.obj"));
+  // The pair `cmaps intersurface eight.off skull.obj --starts 1` starts from.
+  ConsistentPartition p = consistent_partition(a, b, {{317, 4614}}, 2);
+  for (int k = 0; k < 2; ++k) {
+    const PartitionSide& side = p.sides[k];
+    const TriangleMesh& input = k == 0 ? a : b;
+    const SplitTriangles cut = split_triangles(side);
+    std::vector<int> pieces(side.input_triangles, 0);
+    for (int f = 0; f < int(side.mesh.triangles().size()); ++f) ++pieces[side.mesh.input_triangle(f)];
+    EXPECT_EQ(int(cut.corners.size()), int(std::count_if(pieces.begin(), pieces.end(), [](int n) { return n > 1; })));
+    EXPECT_GT(cut.corners.size(), 100u);
+    for (const Triangle& t : cut.corners) {
+      const auto same_turn = [&](const Triangle& u) {
+        for (int r = 0; r < 3; ++r)
+          if (u[r] == t[0] && u[(r + 1) % 3] == t[1] && u[(r + 2) % 3] == t[2]) return true;
+        return false;
+      };
+      EXPECT_EQ(std::count_if(input.triangles.begin(), input.triangles.end(), same_turn), 1);
+    }
+  }
+  PatchParameterization uv_a = parameterize_patches(p.sides[0], p);
+  const PatchParameterization uv_b = parameterize_patches(p.sides[1], p);
+  optimize_patch_map(p.sides[0], uv_a, p.sides[1], uv_b, 20, 2);
+  CrossPatchMap across(p, uv_a, uv_b);
+  const double scale = std::sqrt(side_area(p.sides[0]) / side_area(p.sides[1]));
+  const auto before_a = cut_chords(p.sides[0], b, across.map_a(b, 2), scale);
+  const auto before_b = cut_chords(p.sides[1], a, across.map_b(a), 1 / scale);
+  across.optimize(20);
+  EXPECT_EQ(across.turned_triangles(), 0);
+  EXPECT_EQ(across.stray_hosts(), 0);
+  const auto after_a = cut_chords(p.sides[0], b, across.map_a(b, 2), scale);
+  const auto after_b = cut_chords(p.sides[1], a, across.map_b(a), 1 / scale);
+  std::printf("  cut chords' energy %.4g / %.4g -> %.4g / %.4g, folds %d / %d -> %d / %d\n", before_a.first,
+              before_b.first, after_a.first, after_b.first, before_a.second, before_b.second, after_a.second,
+              after_b.second);
+  // Measured: energy 9.38e4 / 9.09e6 -> 3.82e4 / 5.91e6, folds 156 / 186 ->
+  // 70 / 121; the same optimization not charging them: -> 8.49e4 / 7.65e6,
+  // folds 143 / 156.
+  EXPECT_LT(after_a.first, 0.6 * before_a.first);
+  EXPECT_LT(after_b.first, 0.75 * before_b.first);
+  EXPECT_LT(after_a.second, 0.6 * before_a.second);
+  EXPECT_LT(after_b.second, 0.75 * before_b.second);
 }
 
 }  // namespace

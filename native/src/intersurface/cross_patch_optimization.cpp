@@ -62,6 +62,8 @@ CrossPatchMap::CrossPatchMap(const ConsistentPartition& partition, const PatchPa
   for (int f = 0; f < int(shape_a_.size()); ++f) shape_a_[f] = is_fan(a_, f) ? SourceTriangle() : shape_of(a_, f);
   shape_b_.resize(b_.mesh.triangles().size());
   for (int g = 0; g < int(shape_b_.size()); ++g) shape_b_[g] = is_fan(b_, g) ? SourceTriangle() : shape_of(b_, g);
+  split_a_ = split_triangles(a_);
+  split_b_ = split_triangles(b_);
 
   // A's vertices: a home each (a surface patch beside a rim vertex, not its hole's fan).
   home_.assign(na, -1);
@@ -132,6 +134,14 @@ double CrossPatchMap::total_energy() const {
     const Image* image[3] = {&back_image_[t[0]], &back_image_[t[1]], &back_image_[t[2]]};
     const double ge = triangle_energy(shape_b_[g], image);
     if (std::isfinite(ge)) e += scale_ * scale_ * ge;
+  }
+  for (int s = 0; s < int(split_a_.corners.size()); ++s) {
+    const double se = split_energy(split_a_, s, image_, -1, nullptr);
+    if (std::isfinite(se)) e += se;
+  }
+  for (int s = 0; s < int(split_b_.corners.size()); ++s) {
+    const double se = split_energy(split_b_, s, back_image_, -1, nullptr);
+    if (std::isfinite(se)) e += scale_ * scale_ * se;
   }
   return area > 0 ? e / area : 0;
 }
@@ -218,7 +228,7 @@ CrossPatchMap::Move CrossPatchMap::trial(int v, const Vec2& q, const Ring& ring)
   m.image = image_on_b(m.home, m.point);
 
   // B's vertices inside the ring: the ring triangle holding each with v at q.
-  std::vector<int> touched;
+  std::vector<int> touched, touched_split;
   for (const auto& [w, at] : ring.hosted) {
     Holder holder;
     find_holder(at, faces.begin(), faces.end(), corners, holder);
@@ -226,10 +236,13 @@ CrossPatchMap::Move CrossPatchMap::trial(int v, const Vec2& q, const Ring& ring)
     const RefinedPoint best{holder.face, clamped(holder.weights)};
     m.rehosted.push_back({w, {best, image_in(a_, best.face, best.weights, 1 / scale_)}});
     for (int g : b_.mesh.faces_of(w)) touched.push_back(g);
+    touched_split.insert(touched_split.end(), split_b_.of_vertex[w].begin(), split_b_.of_vertex[w].end());
   }
   std::sort(m.rehosted.begin(), m.rehosted.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
   std::sort(touched.begin(), touched.end());
   touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  std::sort(touched_split.begin(), touched_split.end());
+  touched_split.erase(std::unique(touched_split.begin(), touched_split.end()), touched_split.end());
 
   double e = 0;
   for (int f : faces) {
@@ -238,15 +251,18 @@ CrossPatchMap::Move CrossPatchMap::trial(int v, const Vec2& q, const Ring& ring)
     for (int k = 0; k < 3; ++k) image[k] = tri[k] == v ? &m.image : &image_[tri[k]];
     e += triangle_energy(shape_a_[f], image);
   }
-  for (int g : touched) {
-    const Triangle& tri = b_.mesh.triangles()[g];
+  // A triangle of B with its corners' images after the move.
+  const auto back_energy = [&](const Triangle& tri, const SourceTriangle& shape) {
     const Image* image[3];
     for (int k = 0; k < 3; ++k) {
       const Move::Rehost* rehost = find_remapped(m.rehosted, tri[k]);
       image[k] = rehost ? &rehost->back : &back_image_[tri[k]];
     }
-    e += scale_ * scale_ * triangle_energy(shape_b_[g], image);
-  }
+    return scale_ * scale_ * triangle_energy(shape, image);
+  };
+  for (int g : touched) e += back_energy(b_.mesh.triangles()[g], shape_b_[g]);
+  for (int s : split_a_.of_vertex[v]) e += split_energy(split_a_, s, image_, v, &m.image);
+  for (int s : touched_split) e += back_energy(split_b_.corners[s], split_b_.shape[s]);
   m.energy = e;
   return m;
 }

@@ -9,7 +9,8 @@
 // into one flat surface with cone points (base_complex.h), and each vertex
 // moves in the plane of its base triangle developed with its neighbours, into
 // a neighbour when the move crosses a side, for a lower symmetric Dirichlet
-// energy of both directions (chord_energy.h).
+// energy of both directions (chord_energy.h), the chords of input triangles
+// cut by paths included (split_triangles.h).
 //
 // Invariants: base vertices (the features) and hole fans stay where they
 // are; a move keeps every triangle of the vertex's ring turning the same
@@ -26,6 +27,7 @@
 #include "intersurface/base_complex.h"
 #include "intersurface/chord_energy.h"
 #include "intersurface/patch_locator.h"
+#include "intersurface/split_triangles.h"
 
 namespace cmaps {
 
@@ -96,6 +98,7 @@ class CrossPatchMap {
   std::vector<char> fixed_; // per vertex of A: base vertices and hole fans
   std::vector<int> base_vertex_;  // per vertex of A: its base vertex, -1 for none
   std::vector<SourceTriangle> shape_a_, shape_b_;  // per triangle (zero for a hole's fan)
+  SplitTriangles split_a_, split_b_;               // input triangles cut by paths, charged by their chords too
   std::vector<Image> image_;               // per vertex of A: its image on B
   std::vector<PatchLocator> locate_b_;     // per base triangle: B's patch
   std::vector<std::vector<std::pair<int, Vec2>>> b_points_;  // per vertex of B: its canonical points
