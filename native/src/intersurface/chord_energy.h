@@ -52,15 +52,19 @@ inline Image image_in(const PartitionSide& side, int face, const std::array<doub
 
 // Area times symmetric Dirichlet density of the linear map from a triangle
 // onto the chord triangle of its corners' images, plus kFoldPenalty times
-// the area when that faces against the surface; inf when degenerate.
-inline double triangle_energy(const SourceTriangle& s, const Image* image[3]) {
+// the area when that faces against the surface (then *folded, if given, is
+// raised by its area projected on the surface); inf when degenerate.
+inline double triangle_energy(const SourceTriangle& s, const Image* image[3], double* folded = nullptr) {
   if (s.area <= 0) return 0;
   const Vec3 nq = (image[1]->position - image[0]->position).cross(image[2]->position - image[0]->position);
   const double aq = 0.5 * nq.norm();
   if (aq <= 1e-14 * s.area) return kChordInf;
   const Vec3 q[3] = {image[0]->position, image[1]->position, image[2]->position};
   const double density = dirichlet_term(s, q) * (1 + (s.area / aq) * (s.area / aq));
-  return s.area * (nq.dot(surface_normal(image)) < 0 ? density + kFoldPenalty : density);
+  const Vec3 normal = surface_normal(image);
+  if (!(nq.dot(normal) < 0)) return s.area * density;
+  if (folded) *folded -= 0.5 * nq.dot(normal.normalized());
+  return s.area * (density + kFoldPenalty);
 }
 
 // The weights clamped to the triangle and normalized.

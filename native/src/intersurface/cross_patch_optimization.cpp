@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "common/parallel_for.h"
 #include "consistent_maps/errors.h"
@@ -32,6 +33,7 @@ struct CrossPatchMap::Move {
   Image image;
   std::vector<std::pair<int, Rehost>> rehosted;  // per vertex of B (sorted)
   double energy = kChordInf;
+  double folded = 0;  // the folded chords' area, projected on the surface there
 };
 
 namespace {
@@ -249,7 +251,7 @@ CrossPatchMap::Move CrossPatchMap::trial(int v, const Vec2& q, const Ring& ring)
     const Triangle& tri = a_.mesh.triangles()[f];
     const Image* image[3];
     for (int k = 0; k < 3; ++k) image[k] = tri[k] == v ? &m.image : &image_[tri[k]];
-    e += triangle_energy(shape_a_[f], image);
+    e += triangle_energy(shape_a_[f], image, &m.folded);
   }
   // A triangle of B with its corners' images after the move.
   const auto back_energy = [&](const Triangle& tri, const SourceTriangle& shape) {
@@ -258,10 +260,10 @@ CrossPatchMap::Move CrossPatchMap::trial(int v, const Vec2& q, const Ring& ring)
       const Move::Rehost* rehost = find_remapped(m.rehosted, tri[k]);
       image[k] = rehost ? &rehost->back : &back_image_[tri[k]];
     }
-    return scale_ * scale_ * triangle_energy(shape, image);
+    return scale_ * scale_ * triangle_energy(shape, image, &m.folded);
   };
   for (int g : touched) e += back_energy(b_.mesh.triangles()[g], shape_b_[g]);
-  for (int s : split_a_.of_vertex[v]) e += split_energy(split_a_, s, image_, v, &m.image);
+  for (int s : split_a_.of_vertex[v]) e += split_energy(split_a_, s, image_, v, &m.image, &m.folded);
   for (int s : touched_split) e += back_energy(split_b_.corners[s], split_b_.shape[s]);
   m.energy = e;
   return m;
@@ -280,7 +282,12 @@ bool CrossPatchMap::improve(int v) {
   double length = 0;
   for (const auto& [u, p] : ring.at) length += (p - x0).norm();
   length /= std::max<std::size_t>(1, ring.at.size() - 1);
-  const auto move = descent_step(x0, length, current, [&](const Vec2& q) { return trial(v, q, ring); });
+  const auto at = [&](const Vec2& q) { return trial(v, q, ring); };
+  // A fold's flat charge has no gradient: a ring holding one first steps to
+  // unfold (kept, as any step, only if the energy drops).
+  std::optional<Move> move;
+  if (current.folded > 0) move = descent_step(x0, length, current, at, [](const Move& m) { return m.folded; });
+  if (!move) move = descent_step(x0, length, current, at);
   if (!move) return false;
   apply(v, *move);
   return true;

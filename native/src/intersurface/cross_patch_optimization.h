@@ -10,7 +10,8 @@
 // moves in the plane of its base triangle developed with its neighbours, into
 // a neighbour when the move crosses a side, for a lower symmetric Dirichlet
 // energy of both directions (chord_energy.h), the chords of input triangles
-// cut by paths included (split_triangles.h).
+// cut by paths included (split_triangles.h). A vertex whose ring holds a
+// folded chord steps first against the gradient of the folded area.
 //
 // Invariants: base vertices (the features) and hole fans stay where they
 // are; a move keeps every triangle of the vertex's ring turning the same

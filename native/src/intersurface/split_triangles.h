@@ -25,13 +25,14 @@ struct SplitTriangles {
 SplitTriangles split_triangles(const PartitionSide& side);
 
 // Cut triangle s's chord energy (triangle_energy) with its corners' images
-// in `images` (per mesh vertex), vertex v's replaced by *q (none when v < 0).
+// in `images` (per mesh vertex), vertex v's replaced by *q (none when v < 0);
+// *folded as triangle_energy raises it.
 inline double split_energy(const SplitTriangles& split, int s, const std::vector<Image>& images, int v,
-                           const Image* q) {
+                           const Image* q, double* folded = nullptr) {
   const Triangle& t = split.corners[s];
   const Image* image[3];
   for (int k = 0; k < 3; ++k) image[k] = t[k] == v ? q : &images[t[k]];
-  return triangle_energy(split.shape[s], image);
+  return triangle_energy(split.shape[s], image, folded);
 }
 
 }  // namespace cmaps
