@@ -1,7 +1,7 @@
 // One step of the map optimizers' per-vertex descent (patch_map_optimization.h,
 // cross_patch_optimization.h): a point of the canonical plane moves against
 // the gradient of its energy (central differences, one-sided where a side is
-// infinite: a fold or a turned triangle) by half the mean length of its ring,
+// infinite: a turned or degenerate triangle) by half the mean length of its ring,
 // halved up to ten times until the energy drops. The direction can come from
 // another measure of the move (`key`) than the energy that decides.
 #pragma once
@@ -21,11 +21,11 @@ std::optional<Move> descent_step(const Vec2& x0, double length, const Move& curr
                                  const Key& key) {
   constexpr int kHalvings = 10;
   const double h = 1e-4 * length;
+  const auto value = [&](const Move& move) { return std::isfinite(move.energy) ? key(move) : move.energy; };
   Vec2 gradient;
   for (int axis = 0; axis < 2; ++axis) {
     Vec2 d = Vec2::Zero();
     d[axis] = h;
-    const auto value = [&](const Move& move) { return std::isfinite(move.energy) ? key(move) : move.energy; };
     const double plus = value(trial(x0 + d)), minus = value(trial(x0 - d));
     if (std::isfinite(plus) && std::isfinite(minus)) gradient[axis] = (plus - minus) / (2 * h);
     else if (std::isfinite(plus)) gradient[axis] = (plus - key(current)) / h;
