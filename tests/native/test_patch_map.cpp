@@ -267,18 +267,32 @@ std::pair<double, int> cut_chords(const PartitionSide& side, const TriangleMesh&
 }
 
 // The input triangles of `source` whose chord, as `map` samples it on
-// `target`, folds.
+// `target`, folds (or degenerates).
 int folded_samples(const PartitionSide& side, const TriangleMesh& source, const TriangleMesh& target,
                    const std::vector<InputLocation>& map, double scale) {
   const std::vector<Image> image = sampled_images(side, target, map, scale);
   int folds = 0;
   for (const Triangle& t : source.triangles) {
-    const SourceTriangle shape = source_triangle({source.vertices[t[0]], source.vertices[t[1]], source.vertices[t[2]]});
+    const Vec3 &p = source.vertices[t[0]], &q = source.vertices[t[1]], &r = source.vertices[t[2]];
+    const SourceTriangle shape = source_triangle({p, q, r});
     const Image* corners[3] = {&image[t[0]], &image[t[1]], &image[t[2]]};
     folds += !(triangle_energy(shape, corners) < kFoldPenalty * shape.area);
   }
   return folds;
 }
+
+// Eight -> skull from the pair `cmaps intersurface eight.off skull.obj
+// --starts 1` starts from, its patch map optimized with the paths as walls:
+// what the optimization across paths starts from.
+struct EightSkull {
+  const TriangleMesh a = read_mesh(shared_mesh("higher-genus/eight.off"));
+  const TriangleMesh b = read_mesh(shared_mesh("higher-genus/skull.obj"));
+  ConsistentPartition p = consistent_partition(a, b, {{317, 4614}}, 2);
+  PatchParameterization uv_a = parameterize_patches(p.sides[0], p);
+  const PatchParameterization uv_b = parameterize_patches(p.sides[1], p);
+  const MapOptimization walls = optimize_patch_map(p.sides[0], uv_a, p.sides[1], uv_b, 20, 2);
+  const double scale = std::sqrt(side_area(p.sides[0]) / side_area(p.sides[1]));
+};
 
 TEST(CrossPatchMap, ChargesTheChordsOfInputTrianglesCutByPaths) {
   // What the map gives back is sampled at the input vertices, so a triangle
@@ -286,10 +300,9 @@ TEST(CrossPatchMap, ChargesTheChordsOfInputTrianglesCutByPaths) {
   // skull (the first start's partition) has such chords folded and
   // needle-thin; the optimization across paths lowers them, both ways. Every
   // cut triangle is found, its corners turning as its pieces.
-  const TriangleMesh a = read_mesh(shared_mesh("higher-genus/eight.off"));
-  const TriangleMesh b = read_mesh(shared_mesh("higher-genus/skull.obj"));
-  // The pair `cmaps intersurface eight.off skull.obj --starts 1` starts from.
-  ConsistentPartition p = consistent_partition(a, b, {{317, 4614}}, 2);
+  const EightSkull pair;
+  const TriangleMesh &a = pair.a, &b = pair.b;
+  const ConsistentPartition& p = pair.p;
   for (int k = 0; k < 2; ++k) {
     const PartitionSide& side = p.sides[k];
     const TriangleMesh& input = k == 0 ? a : b;
@@ -307,11 +320,8 @@ TEST(CrossPatchMap, ChargesTheChordsOfInputTrianglesCutByPaths) {
       EXPECT_EQ(std::count_if(input.triangles.begin(), input.triangles.end(), same_turn), 1);
     }
   }
-  PatchParameterization uv_a = parameterize_patches(p.sides[0], p);
-  const PatchParameterization uv_b = parameterize_patches(p.sides[1], p);
-  optimize_patch_map(p.sides[0], uv_a, p.sides[1], uv_b, 20, 2);
-  CrossPatchMap across(p, uv_a, uv_b);
-  const double scale = std::sqrt(side_area(p.sides[0]) / side_area(p.sides[1]));
+  CrossPatchMap across(p, pair.uv_a, pair.uv_b);
+  const double scale = pair.scale;
   const auto before_a = cut_chords(p.sides[0], b, across.map_a(b, 2), scale);
   const auto before_b = cut_chords(p.sides[1], a, across.map_b(a), 1 / scale);
   across.optimize(20);
@@ -338,14 +348,11 @@ TEST(CrossPatchMap, RingsWithAFoldStepAgainstTheFoldedArea) {
   // chords' projected area, kept only if it lowers the energy too. Eight ->
   // skull as above: the sampled folds of both directions, all input
   // triangles.
-  const TriangleMesh a = read_mesh(shared_mesh("higher-genus/eight.off"));
-  const TriangleMesh b = read_mesh(shared_mesh("higher-genus/skull.obj"));
-  ConsistentPartition p = consistent_partition(a, b, {{317, 4614}}, 2);
-  PatchParameterization uv_a = parameterize_patches(p.sides[0], p);
-  const PatchParameterization uv_b = parameterize_patches(p.sides[1], p);
-  optimize_patch_map(p.sides[0], uv_a, p.sides[1], uv_b, 20, 2);
-  CrossPatchMap across(p, uv_a, uv_b);
-  const double scale = std::sqrt(side_area(p.sides[0]) / side_area(p.sides[1]));
+  const EightSkull pair;
+  const TriangleMesh &a = pair.a, &b = pair.b;
+  const ConsistentPartition& p = pair.p;
+  CrossPatchMap across(p, pair.uv_a, pair.uv_b);
+  const double scale = pair.scale;
   const auto folds = [&] {
     return std::make_pair(folded_samples(p.sides[0], a, b, across.map_a(b, 2), scale),
                           folded_samples(p.sides[1], b, a, across.map_b(a), 1 / scale));
