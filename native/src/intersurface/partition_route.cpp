@@ -1,0 +1,354 @@
+#include "intersurface/partition_route.h"
+
+#include <algorithm>
+#include <limits>
+#include <memory>
+#include <numeric>
+
+#include "common/side_by_side.h"
+#include "consistent_maps/errors.h"
+#include "consistent_maps/mesh_check.h"
+#include "intersurface/consistent_partition.h"
+#include "intersurface/cross_patch_optimization.h"
+#include "intersurface/hole_rims.h"
+#include "intersurface/map_choice.h"
+#include "intersurface/patch_balance.h"
+#include "intersurface/patch_map_optimization.h"
+#include "intersurface/patch_parameterization.h"
+#include "intersurface/path_guide.h"
+#include "intersurface/stage_clock.h"
+#include "paths/mesh_holes.h"
+
+namespace cmaps {
+namespace {
+
+// The vertex of `mesh` farthest from `point`.
+int farthest_from(const TriangleMesh& mesh, const Vec3& point) {
+  int best = 0;
+  for (int v = 1; v < int(mesh.vertices.size()); ++v)
+    if ((mesh.vertices[v] - point).squaredNorm() > (mesh.vertices[best] - point).squaredNorm()) best = v;
+  return best;
+}
+
+// The vertex farthest from the centroid: the automatic feature of a mesh.
+int farthest_from_centroid(const TriangleMesh& mesh) {
+  Vec3 centroid = Vec3::Zero();
+  for (const Vec3& v : mesh.vertices) centroid += v;
+  return farthest_from(mesh, centroid / double(mesh.vertices.size()));
+}
+
+// The automatic feature of restart `start`: the start-th of the vertices
+// spread by farthest-point sampling from the one farthest from the centroid.
+int spread_vertex(const TriangleMesh& mesh, int start) {
+  int chosen = farthest_from_centroid(mesh);
+  std::vector<double> distance(mesh.vertices.size(), std::numeric_limits<double>::infinity());
+  for (int k = 0; k < start; ++k) {
+    for (std::size_t v = 0; v < distance.size(); ++v)
+      distance[v] = std::min(distance[v], (mesh.vertices[v] - mesh.vertices[chosen]).squaredNorm());
+    chosen = int(std::max_element(distance.begin(), distance.end()) - distance.begin());
+  }
+  return chosen;
+}
+
+// Genus >= 1: the map through one consistent partition of the closed
+// meshes (patch embeddings, their optimization, point location), measured.
+void map_partition(ConsistentPartition& partition, const ClosedMesh& closed_a, const ClosedMesh& closed_b,
+                   const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResult& result,
+                   const IntersurfaceOptions& options, const ProgressCallback& progress) {
+  auto stage = Clock::now();
+  if (progress && !progress(0, "parameterizing patches")) throw Cancelled();
+  PatchParameterization uv_a = parameterize_patches(partition.sides[0], partition);
+  const PatchParameterization uv_b = parameterize_patches(partition.sides[1], partition);
+  result.seconds_parameterize = seconds_since(stage);
+
+  stage = Clock::now();
+  if (progress && !progress(0.3, "optimizing the map")) throw Cancelled();
+  const int sweeps = options.optimize_rounds > 0 ? options.optimize_sweeps : 0;
+  optimize_patch_map(partition.sides[0], uv_a, partition.sides[1], uv_b, sweeps, options.sphere.threads,
+                     sweeps > 0 ? kPatchAreaRounds : 0);
+  // Then across the paths (cross_patch_optimization.h).
+  CrossPatchMap across(partition, uv_a, uv_b);
+  if (options.optimize_rounds > 0)
+    across.optimize(options.cross_sweeps, [&](double done) {
+      return !progress || progress(0.3 + 0.4 * done, "optimizing the map across the paths");
+    });
+  result.seconds_optimize = seconds_since(stage);
+
+  stage = Clock::now();
+  if (progress && !progress(0.7, "locating vertices on the other mesh")) throw Cancelled();
+  const int threads = options.sphere.threads;
+  const auto convert = [](const std::vector<InputLocation>& located) {
+    std::vector<SurfacePoint> points(located.size());
+    for (std::size_t i = 0; i < located.size(); ++i) points[i] = {located[i].triangle, located[i].barycentric};
+    return points;
+  };
+  const TriangleMesh &ca = closed_a.mesh, &cb = closed_b.mesh;
+  // The surfaces' own points only (no hole centre, no fan corner); none lands in a fan.
+  const auto surface_only = [&](std::vector<SurfacePoint> points, std::size_t count, const TriangleMesh& target) {
+    points.resize(count);
+    for (const SurfacePoint& p : points)
+      if (p.triangle >= int(target.triangles.size())) throw Error("internal error: a surface point maps into a hole");
+    return points;
+  };
+  result.a_to_b = surface_only(convert(across.map_a(cb, threads)), a.vertices.size(), b);
+  result.b_to_a = surface_only(convert(across.map_b(ca)), b.vertices.size(), a);
+  if (options.corner_images) {
+    result.a_corners_to_b = surface_only(convert(across.map_a_corners(ca, cb, threads)), 3 * a.triangles.size(), b);
+    result.b_corners_to_a = surface_only(convert(across.map_b_corners(ca, cb, threads)), 3 * b.triangles.size(), a);
+  }
+  result.a_on_b = surface_positions(b, result.a_to_b);
+  result.b_on_a = surface_positions(a, result.b_to_a);
+  result.seconds_locate = seconds_since(stage);
+
+  stage = Clock::now();
+  result.distortion_a_to_b = result.composition_a_to_b = measure_intersurface_map(a, b, result.a_to_b);
+  result.distortion_b_to_a = result.composition_b_to_a = measure_intersurface_map(b, a, result.b_to_a);
+  result.seconds_measure = seconds_since(stage);
+}
+
+// A pair's consistent partition for the direct map, as traced and with its
+// paths moved to balance the patches' areas (`retraced` paths moved), and
+// the holes' fans closing both meshes.
+struct PatchPartitions {
+  ClosedMesh closed_a, closed_b;
+  ConsistentPartition traced, balanced;
+  int retraced = 0;
+  double seconds_features = 0, seconds_partition = 0;
+};
+
+// The partitions of the pair (A's paths traced first). A pair given no
+// features and without holes starts from the pair of restart `start`.
+PatchPartitions partition_pair(const TriangleMesh& a, const TriangleMesh& b, const IntersurfaceResult& result,
+                               const IntersurfaceOptions& options, int start, const ProgressCallback& progress) {
+  auto stage = Clock::now();
+  std::vector<std::array<int, 2>> pairs;
+  for (const FeaturePair& f : result.features) pairs.push_back({f.a, f.b});
+  // Holes are closed by fans; paths keep cyclic orders by each mesh's own
+  // orientation: B is turned like A (its input triangle indices stay, only
+  // corner order flips).
+  PatchPartitions made{close_holes(a, /*any_genus=*/true), close_holes(b, /*any_genus=*/true), {}, {}, 0, 0, 0};
+  const ClosedMesh &closed_a = made.closed_a, &closed_b = made.closed_b;
+  if (pairs.empty() && closed_a.loops.empty()) {
+    // A's vertex farthest from its centroid (or, restarting, another spread
+    // vertex), and B's nearest to it with the centroids and areas matched
+    // (meshes posed alike get a matching pair). Holes bring their own pairs
+    // on their rims.
+    const int far_a = spread_vertex(a, start);
+    pairs.push_back({far_a, PathGuide({}, {}, a, b).nearest(a.vertices[far_a], b.vertices)});
+  }
+  if (result.genus == 0 && pairs.size() == 1 && closed_a.loops.empty()) {
+    // A sphere's partition grows from a path: a second pair, A's vertex
+    // farthest from the first and B's nearest to it in A's frame (B's
+    // farthest from its first if that is the first itself).
+    const Vec3 &first_a = a.vertices[pairs[0][0]], &first_b = b.vertices[pairs[0][1]];
+    const int far_a = farthest_from(a, first_a);
+    int near_b = PathGuide({first_a}, {first_b}, a, b).nearest(a.vertices[far_a], b.vertices);
+    if (near_b == pairs[0][1]) near_b = farthest_from(b, first_b);
+    pairs.push_back({far_a, near_b});
+  }
+  TriangleMesh b_like_a = closed_b.mesh;
+  const bool turned = signed_volume(closed_a.mesh) * signed_volume(closed_b.mesh) < 0;
+  if (turned)
+    for (Triangle& t : b_like_a.triangles) std::swap(t[1], t[2]);
+  PartitionHoles holes;
+  if (!closed_a.loops.empty() || !closed_b.loops.empty()) {
+    std::vector<Vec3> on_a, on_b;
+    for (const auto& p : pairs) on_a.push_back(a.vertices[p[0]]), on_b.push_back(b.vertices[p[1]]);
+    holes.rims = pair_hole_rims(closed_a, closed_b, pairs, turned, PathGuide(on_a, on_b, a, b));
+    holes.first_fan = {closed_a.input_triangles, closed_b.input_triangles};
+    for (const HoleRim& rim : holes.rims) {
+      for (const auto& f : rim.features)
+        if (std::find(pairs.begin(), pairs.end(), f) == pairs.end()) pairs.push_back(f);
+      pairs.push_back(rim.centre);
+    }
+  }
+  made.seconds_features = seconds_since(stage);
+
+  stage = Clock::now();
+  if (progress && !progress(0.05, "partitioning")) throw Cancelled();
+  made.traced = consistent_partition(closed_a.mesh, b_like_a, pairs, result.genus, holes);
+  // Balancing is an improvement the traced partition can do without: if it fails, that serves.
+  made.balanced = made.traced;
+  try {
+    made.retraced = balance_patch_areas(made.balanced, options.balance_rounds).retraced;
+  } catch (const Error&) {
+    // retraced stays 0: the partition as traced serves
+  }
+  made.seconds_partition = seconds_since(stage);
+  return made;
+}
+
+// The direct map through a consistent partition (every pair of genus >= 1;
+// genus 0 on request or to compare with the sphere): through the partition
+// as traced and through the balanced one (when any path moved), the lower
+// summed median distortion kept, as for genus 0's restarts. With
+// `partitions`, the pair's partitions from `start` (see partition_pair) are
+// taken from there, or traced and left there when it is empty; the maps
+// refine copies of them.
+void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResult& result,
+                         const IntersurfaceOptions& options, int start, const ProgressCallback& progress,
+                         std::shared_ptr<const PatchPartitions>* partitions = nullptr) {
+  if (partitions && !*partitions)
+    *partitions = std::make_shared<const PatchPartitions>(partition_pair(a, b, result, options, start, progress));
+  PatchPartitions made = partitions ? **partitions : partition_pair(a, b, result, options, start, progress);
+  const ClosedMesh &closed_a = made.closed_a, &closed_b = made.closed_b;
+  const int given = int(result.features.size()), retraced = made.retraced;
+  ConsistentPartition partition = std::move(made.traced), balanced = std::move(made.balanced);
+  result.seconds_features = made.seconds_features;
+  result.seconds_partition = made.seconds_partition;
+  result.patch_area_ratio = patch_area_ratio(partition);
+  map_partition(partition, closed_a, closed_b, a, b, result, options, slice(progress, 0.6, retraced ? 0.8 : 1));
+  if (retraced > 0) {
+    IntersurfaceResult moved = result;
+    bool mapped = true;
+    try {
+      map_partition(balanced, closed_a, closed_b, a, b, moved, options, slice(progress, 0.8, 1));
+    } catch (const Cancelled&) {
+      throw;
+    } catch (const Error&) {
+      mapped = false;
+    }
+    const bool better = mapped && less_distorted(moved, result, a.triangles.size() + b.triangles.size());
+    // Both maps share the partition and features: their times count once.
+    IntersurfaceResult& kept = better ? moved : result;
+    const double partition_seconds = kept.seconds_partition, feature_seconds = kept.seconds_features;
+    add_stage_seconds(kept, better ? result : moved);
+    kept.seconds_partition = partition_seconds, kept.seconds_features = feature_seconds;
+    if (better) {
+      result = std::move(moved);
+      result.balanced_patches = true;
+      result.patch_area_ratio = patch_area_ratio(balanced);
+      partition = std::move(balanced);
+    }
+  }
+
+  const std::vector<int>&fa = partition.sides[0].feature_vertex, &fb = partition.sides[1].feature_vertex;
+  result.features.clear();
+  for (std::size_t k = 0; k < fa.size(); ++k)
+    if (int(k) < given || (fa[k] < int(a.vertices.size()) && fb[k] < int(b.vertices.size())))
+      result.features.push_back({fa[k], fb[k]});
+  result.added_features = int(result.features.size()) - given;
+  result.base_vertices = int(fa.size());
+  result.base_triangles = int(partition.triangles.size());
+  result.steiner_a = partition.sides[0].mesh.vertex_count() - int(closed_a.mesh.vertices.size());
+  result.steiner_b = partition.sides[1].mesh.vertex_count() - int(closed_b.mesh.vertices.size());
+}
+
+// The partitions of one start from both sides (see map_through_patches).
+struct StartPartitions {
+  int start = -1;
+  std::array<std::shared_ptr<const PatchPartitions>, 2> sides;  // from A's side, from B's side
+};
+
+// The direct map through a partition, traced and optimized from A's side and
+// from B's side at once, the less distorted kept: the partition is
+// traced on A first and A's embedding moves against B's, so the two differ
+// (sets/cactus 2 -> 0, 10 features: 1.1 % off the truth one way, 0.6 % the
+// other), and the map kept does not depend on which mesh is called A.
+// `partitions`: each side's partitions, as map_through_patches takes them.
+void map_directly_from(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResult& result,
+                       const IntersurfaceOptions& options, int start, const ProgressCallback& progress,
+                       StartPartitions* partitions = nullptr) {
+  IntersurfaceResult backward = result;
+  exchange_sides(backward);
+  const auto side = [&](int k) { return partitions ? &partitions->sides[k] : nullptr; };
+  const auto [forward_error, backward_error] = run_side_by_side(
+      progress, 0.5,
+      [&](const ProgressCallback& part) { map_through_patches(a, b, result, options, start, part, side(0)); },
+      [&](const ProgressCallback& part) { map_through_patches(b, a, backward, options, start, part, side(1)); });
+  if (!backward_error) exchange_sides(backward);
+  keep_less_distorted(result, forward_error, backward, backward_error, a.triangles.size() + b.triangles.size());
+}
+
+// Per start tried: the start, both directions' summed mean and median, and folds.
+struct StartTrials {
+  std::vector<int> starts;
+  std::vector<double> energies, medians;
+  std::vector<int> folds;
+};
+
+// Direct maps from each of `starts` (see map_through_patches), the least
+// distorted kept in `result` and each one's summed mean, median and folds
+// appended to `tried` (in order, with its start). A start that fails is
+// skipped; when all fail, the first error is thrown. `partitions` holds the
+// partitions of its start when that is among `starts` (they are not traced
+// again), and is left holding those of the start kept.
+void map_directly_best_of(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResult& result,
+                          const IntersurfaceOptions& options, const std::vector<int>& starts, StartTrials& tried,
+                          StartPartitions& partitions, const ProgressCallback& progress) {
+  IntersurfaceResult best;
+  std::exception_ptr error;
+  bool found = false;
+  StartPartitions kept;
+  for (std::size_t k = 0; k < starts.size(); ++k) {
+    IntersurfaceResult map = result;
+    StartPartitions made = partitions.start == starts[k] ? partitions : StartPartitions{starts[k], {}};
+    try {
+      map_directly_from(a, b, map, options, starts[k],
+                        slice(progress, double(k) / starts.size(), (k + 1.0) / starts.size()), &made);
+    } catch (const Cancelled&) {
+      throw;
+    } catch (const Error&) {
+      if (!error) error = std::current_exception();
+      continue;
+    }
+    tried.starts.push_back(starts[k]);
+    tried.energies.push_back(map.distortion_a_to_b.symmetric_dirichlet + map.distortion_b_to_a.symmetric_dirichlet);
+    tried.medians.push_back(summed_median(map));
+    tried.folds.push_back(summed_folds(map));
+    if (!found || less_distorted(map, best, a.triangles.size() + b.triangles.size()))
+      best = std::move(map), kept = std::move(made);
+    found = true;
+  }
+  if (!found) std::rethrow_exception(error);
+  result = std::move(best);
+  partitions = std::move(kept);
+}
+
+}  // namespace
+
+void map_directly(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResult& result,
+                  const IntersurfaceOptions& options, const ProgressCallback& progress) {
+  const bool automatic = result.features.empty() && check_mesh(a).closed() && check_mesh(b).closed();
+  if (!automatic) {
+    map_directly_from(a, b, result, options, 0, progress);
+    return;
+  }
+  const std::size_t samples = a.triangles.size() + b.triangles.size();
+  std::vector<int> starts(std::max(options.starts, options.restarts));
+  std::iota(starts.begin(), starts.end(), 0);
+  StartTrials screened;
+  StartPartitions partitions;  // the screened start kept: its optimization does not trace them again
+  double screening = 0;
+  if (options.optimize_rounds > 0 && int(starts.size()) > options.restarts) {
+    IntersurfaceOptions quick = options;
+    quick.optimize_rounds = 0;
+    IntersurfaceResult ignored = result;
+    screening = 0.4;
+    map_directly_best_of(a, b, ignored, quick, starts, screened, partitions, slice(progress, 0, screening));
+    // The least distorted of those left, options.restarts times (the tie
+    // rule is no ordering to sort by).
+    std::vector<int> left(screened.starts.size());
+    std::iota(left.begin(), left.end(), 0);
+    starts.clear();
+    while (int(starts.size()) < options.restarts && !left.empty()) {
+      auto best = left.begin();
+      for (auto k = left.begin(); k != left.end(); ++k)
+        if (less_distorted(screened.medians[*k], screened.folds[*k], screened.medians[*best], screened.folds[*best],
+                           samples))
+          best = k;
+      starts.push_back(screened.starts[*best]);
+      left.erase(best);
+    }
+  }
+  StartTrials optimized;
+  map_directly_best_of(a, b, result, options, starts, optimized, partitions, slice(progress, screening, 1));
+  result.start_median_dirichlet = screened.medians;
+  if (optimized.starts.size() > 1) {
+    result.restart_dirichlet = std::move(optimized.energies);
+    result.restart_median_dirichlet = std::move(optimized.medians);
+    result.restart_flipped = std::move(optimized.folds);
+  }
+}
+
+}  // namespace cmaps
