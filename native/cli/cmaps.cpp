@@ -140,7 +140,7 @@ options:
                      A's frame, or another of A's spread by farthest-point
                      sampling): S first pairs are each mapped without
                      optimization and the least distorted one optimized
-                     (1..100, default 4; JSON: start_median_dirichlet)
+                     (1..100, default 8; JSON: start_median_dirichlet)
   --method M         intersurface, transfer (genus 0): map through the common
                      sphere, directly through a consistent partition as for
                      genus >= 1, or auto (default): both, keeping the less
@@ -193,8 +193,9 @@ struct Arguments {
   std::string features, targets, refined_mesh;  // constrained only (features: consistent too)
   int remesh = 0, grid = 64, first = -1;        // consistent only
   bool remesh_given = false, grid_given = false, first_given = false;
-  // optimize, cross_sweeps, starts: intersurface and transfer only
-  int optimize = 2, restarts = 1, cross_sweeps = 20, starts = 4;
+  // optimize, cross_sweeps, starts: intersurface and transfer only (defaults: the library's)
+  int optimize = 2, restarts = 1, cross_sweeps = cmaps::IntersurfaceOptions{}.cross_sweeps,
+      starts = cmaps::IntersurfaceOptions{}.starts;
   bool optimize_given = false, restarts_given = false, cross_sweeps_given = false, starts_given = false;
   std::optional<cmaps::IntersurfaceMethod> method;  // intersurface and transfer only
   std::uint64_t seed = 1;

@@ -999,7 +999,8 @@ PYBIND11_MODULE(_native, m) {
   m.def("intersurface_map", &intersurface_map, py::arg("mesh_a"), py::arg("mesh_b"),
         py::arg("feature_pairs") = py::list(), py::kw_only(), py::arg("grid") = 64, py::arg("optimize") = 2,
         py::arg("restarts") = 1, py::arg("corner_images") = false, py::arg("balance_rounds") = 4,
-        py::arg("cross_sweeps") = 20, py::arg("starts") = 4,
+        py::arg("cross_sweeps") = cmaps::IntersurfaceOptions{}.cross_sweeps,
+        py::arg("starts") = cmaps::IntersurfaceOptions{}.starts,
         py::arg("method") = "auto", py::arg("seed") = 1, py::arg("effort") = 1, py::arg("threads") = 2, py::arg("progress") = py::none(),
         "Inter-surface map between two meshes of equal genus, closed or with as many holes (genus >= 1:\n"
         "through a consistent partition into triangular patches, 'base_vertices' and 'base_triangles' of its\n"

@@ -250,7 +250,7 @@ def test_genus_one_first_pairs_are_screened(native):
     a, b = native.read_mesh(str(TORUS)), native.read_mesh(str(KNOT))
     none = np.zeros((0, 2), np.int64)
     r = native.intersurface_map(a, b, none, restarts=2)
-    assert len(r["start_median_dirichlet"]) == 4 and len(set(np.round(r["start_median_dirichlet"], 6))) == 4
+    assert len(r["start_median_dirichlet"]) == 8 and len(set(np.round(r["start_median_dirichlet"], 6))) == 8
     medians = r["restart_median_dirichlet"]
     assert len(medians) == 2
     assert sum(r["median_symmetric_dirichlet"]) == pytest.approx(min(medians))
