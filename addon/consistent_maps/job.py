@@ -16,9 +16,8 @@ class Job:
         self.tasks = tasks
         self.fraction = 0.0
         self.stage = "starting"
-        self.outcome = None
         self.error = None
-        self.cancelled = False
+        self._outcome = None
         self._cancel_requested = False
         self._thread = threading.Thread(target=self._work, args=(names, options), name="consistent_maps",
                                         daemon=True)
@@ -29,9 +28,9 @@ class Job:
 
     def _work(self, names, options):
         try:
-            self.outcome = api.run(self.tasks, names, progress=self._progress, **options)
+            self._outcome = api.run(self.tasks, names, progress=self._progress, **options)
         except api.Cancelled:
-            self.cancelled = True
+            pass  # only a cancel request stops it: `cancelled` says so
         except Exception as e:  # reported to the user by the operator, on the main thread
             self.error = e
 
@@ -40,6 +39,17 @@ class Job:
 
     def cancel(self):
         self._cancel_requested = True
+
+    # A cancel counts even when it comes after the last progress report, or
+    # after the computation ended but before its result was applied: the
+    # user asked for nothing to change, so the result is dropped.
+    @property
+    def cancelled(self):
+        return self._cancel_requested
+
+    @property
+    def outcome(self):
+        return None if self._cancel_requested else self._outcome
 
     @property
     def done(self):

@@ -607,6 +607,20 @@ def test_cancel_operator_stops_the_job_and_changes_nothing():
     assert snapshot(spot) == before
 
 
+def test_cancel_after_the_computation_ended_still_changes_nothing():
+    """Cancel pressed after the last progress report, before the result is applied: it is dropped."""
+    spot = with_features(load(SPOT, "Spot"))
+    before = snapshot(spot)
+    running = job.start(api.prepare([spot]), [], {"effort": 0, "threads": 1})
+    while not running.done:
+        time.sleep(0.01)
+    assert running.error is None and running.outcome is not None and not running.cancelled
+    assert bpy.ops.consistent_maps.cancel() == {'FINISHED'}
+    assert running.cancelled and running.outcome is None
+    job.finish()
+    assert snapshot(spot) == before and api.result_state(spot) == "NONE"
+
+
 def test_loading_a_file_drops_a_running_job():
     spot = load(SPOT, "Spot")
     running = job.start(api.prepare([spot]), [], {"effort": 2, "threads": 1})
