@@ -7,6 +7,7 @@
 #include <set>
 #include <string>
 
+#include "common/stage_clock.h"
 #include "consistent_maps/errors.h"
 #include "consistent_maps/mesh_check.h"
 #include "consistent_maps/octahedral_grid.h"
@@ -96,11 +97,6 @@ TriangleMesh outward(const TriangleMesh& mesh) {
   if (signed_volume(close_holes(mesh).mesh) < 0)
     for (Triangle& t : m.triangles) std::swap(t[1], t[2]);
   return m;
-}
-
-ProgressCallback slice(const ProgressCallback& progress, double begin, double end) {
-  if (!progress) return {};
-  return [&progress, begin, end](double f, const std::string& stage) { return progress(begin + (end - begin) * f, stage); };
 }
 
 }  // namespace

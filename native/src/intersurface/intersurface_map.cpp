@@ -13,12 +13,12 @@
 #include <tuple>
 
 #include "common/side_by_side.h"
+#include "common/stage_clock.h"
 #include "consistent_maps/errors.h"
 #include "consistent_maps/mesh_check.h"
 #include "intersurface/map_choice.h"
 #include "intersurface/partition_route.h"
 #include "intersurface/sphere_route.h"
-#include "intersurface/stage_clock.h"
 
 namespace cmaps {
 namespace {

@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "common/side_by_side.h"
+#include "common/stage_clock.h"
 #include "consistent_maps/errors.h"
 #include "consistent_maps/mesh_check.h"
 #include "intersurface/consistent_partition.h"
@@ -16,7 +17,6 @@
 #include "intersurface/patch_map_optimization.h"
 #include "intersurface/patch_parameterization.h"
 #include "intersurface/path_guide.h"
-#include "intersurface/stage_clock.h"
 #include "paths/mesh_holes.h"
 
 namespace cmaps {

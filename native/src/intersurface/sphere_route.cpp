@@ -6,6 +6,7 @@
 #include <limits>
 #include <tuple>
 
+#include "common/stage_clock.h"
 #include "consistent/parameterize_with_reference.h"
 #include "consistent_maps/consistent_parameterization.h"
 #include "consistent_maps/sphere_locator.h"
@@ -13,7 +14,6 @@
 #include "intersurface/map_choice.h"
 #include "intersurface/sphere_map_optimizer.h"
 #include "intersurface/sphere_pair.h"
-#include "intersurface/stage_clock.h"
 
 namespace cmaps {
 namespace {

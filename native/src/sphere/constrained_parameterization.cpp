@@ -6,6 +6,7 @@
 #include <set>
 #include <string>
 
+#include "common/stage_clock.h"
 #include "consistent_maps/errors.h"
 #include "consistent_maps/mesh_check.h"
 #include "consistent_maps/progressive_mesh.h"
@@ -18,10 +19,6 @@
 
 namespace cmaps {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 void validate_features(const TriangleMesh& mesh, const std::vector<int>& features, const std::vector<Vec3>& targets) {
   if (features.size() < 3)

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <random>
 
+#include "common/stage_clock.h"
 #include "consistent_maps/errors.h"
 #include "consistent_maps/mesh_check.h"
 #include "consistent_maps/progressive_mesh.h"
@@ -11,10 +12,6 @@
 
 namespace cmaps {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 // Maps the four base vertices to a regular tetrahedron, oriented like the
 // base triangles, turned by a seeded random rotation.

@@ -1,5 +1,5 @@
-// Stage bookkeeping of the inter-surface map: the clock each stage's seconds
-// are read from, and a stage's slice of the caller's progress.
+// Stage bookkeeping: the clock a stage's seconds are read from, and a
+// stage's slice of the caller's progress.
 #pragma once
 #include <chrono>
 #include <string>
