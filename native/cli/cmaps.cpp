@@ -193,9 +193,9 @@ struct Arguments {
   std::string features, targets, refined_mesh;  // constrained only (features: consistent too)
   int remesh = 0, grid = 64, first = -1;        // consistent only
   bool remesh_given = false, grid_given = false, first_given = false;
-  // optimize, cross_sweeps, starts: intersurface and transfer only (defaults: the library's)
-  int optimize = 2, restarts = 1, cross_sweeps = cmaps::IntersurfaceOptions{}.cross_sweeps,
-      starts = cmaps::IntersurfaceOptions{}.starts;
+  // optimize, cross_sweeps, starts: intersurface and transfer only, defaults the library's
+  int optimize = cmaps::IntersurfaceOptions{}.optimize_rounds, restarts = 1,
+      cross_sweeps = cmaps::IntersurfaceOptions{}.cross_sweeps, starts = cmaps::IntersurfaceOptions{}.starts;
   bool optimize_given = false, restarts_given = false, cross_sweeps_given = false, starts_given = false;
   std::optional<cmaps::IntersurfaceMethod> method;  // intersurface and transfer only
   std::uint64_t seed = 1;

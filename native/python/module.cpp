@@ -997,7 +997,8 @@ PYBIND11_MODULE(_native, m) {
         "least 3 present); locations: (k, 3), e.g. a set's 'feature_locations'. Returns (sphere, stats, extras)\n"
         "like constrained_spherical_parameterization.");
   m.def("intersurface_map", &intersurface_map, py::arg("mesh_a"), py::arg("mesh_b"),
-        py::arg("feature_pairs") = py::list(), py::kw_only(), py::arg("grid") = 64, py::arg("optimize") = 2,
+        py::arg("feature_pairs") = py::list(), py::kw_only(), py::arg("grid") = 64,
+        py::arg("optimize") = cmaps::IntersurfaceOptions{}.optimize_rounds,
         py::arg("restarts") = 1, py::arg("corner_images") = false, py::arg("balance_rounds") = 4,
         py::arg("cross_sweeps") = cmaps::IntersurfaceOptions{}.cross_sweeps,
         py::arg("starts") = cmaps::IntersurfaceOptions{}.starts,
