@@ -1,0 +1,119 @@
+// `cmaps intersurface`: the inter-surface map of two meshes of the same genus,
+// written as surface points both ways and as each mesh mapped onto the other.
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "command_io.h"
+#include "commands.h"
+#include "consistent_maps/errors.h"
+#include "consistent_maps/mesh_io.h"
+#include "intersurface_inputs.h"
+
+namespace cmaps::cli {
+
+namespace {
+
+// One line per source vertex: target triangle, then its three barycentric weights.
+std::string surface_points_text(const std::vector<cmaps::SurfacePoint>& points) {
+  std::string text;
+  char line[128];
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const cmaps::SurfacePoint& p = points[i];
+    std::snprintf(line, sizeof line, "%s%d %.17g %.17g %.17g", i ? "\n" : "", p.triangle, p.barycentric[0],
+                  p.barycentric[1], p.barycentric[2]);
+    text += line;
+  }
+  return text;
+}
+
+}  // namespace
+
+void run_intersurface(const Arguments& args, Outcome& out) {
+  out.intersurface = true;
+  check_output_directory(args.output);
+  out.json.add_json("inputs", JsonObject::array(args.inputs));
+  const cmaps::TriangleMesh a = cmaps::read_mesh(args.inputs[0]);
+  const cmaps::TriangleMesh b = cmaps::read_mesh(args.inputs[1]);
+  out.faces_per_input = JsonObject::array(std::vector<int>{int(a.triangles.size()), int(b.triangles.size())});
+  const std::vector<cmaps::FeaturePair> features = read_feature_pairs(args, a, b);
+  out.feature_count = int(features.size());
+
+  const cmaps::IntersurfaceOptions options = intersurface_options(args);
+  const cmaps::IntersurfaceResult result =
+      with_terminal_progress(!args.json && isatty(STDERR_FILENO), [&](const cmaps::ProgressCallback& progress) {
+        return cmaps::intersurface_map(a, b, features, options, progress);
+      });
+  if (result.a_to_b.size() != a.vertices.size() || result.b_to_a.size() != b.vertices.size())
+    throw cmaps::Error("internal error: the inter-surface map returned " + std::to_string(result.a_to_b.size()) +
+                       " and " + std::to_string(result.b_to_a.size()) + " images for " +
+                       std::to_string(a.vertices.size()) + " and " + std::to_string(b.vertices.size()) + " vertices");
+
+  namespace fs = std::filesystem;
+  std::error_code error;
+  fs::create_directories(args.output, error);
+  if (error) throw cmaps::IoError("cannot create '" + args.output + "': " + error.message());
+  const auto path = [&](const char* name) { return (fs::path(args.output) / name).string(); };
+  const std::vector<std::string> outputs{path("A_to_B.txt"), path("B_to_A.txt"), path("A_on_B.obj"),
+                                         path("B_on_A.obj")};
+  write_text(outputs[0], surface_points_text(result.a_to_b));
+  write_text(outputs[1], surface_points_text(result.b_to_a));
+  cmaps::write_mesh(outputs[2], cmaps::TriangleMesh{result.a_on_b, a.triangles});
+  cmaps::write_mesh(outputs[3], cmaps::TriangleMesh{result.b_on_a, b.triangles});
+
+  const cmaps::MapDistortion &ab = result.distortion_a_to_b, &ba = result.distortion_b_to_a;
+  out.dirichlet = JsonObject::array(std::vector<double>{ab.symmetric_dirichlet, ba.symmetric_dirichlet});
+  out.flips = JsonObject::array(std::vector<int>{ab.flipped, ba.flipped});
+  out.efficiencies = JsonObject::array(std::vector<double>{result.efficiency_a, result.efficiency_b});
+  out.steiner_per_mesh = JsonObject::array(std::vector<int>{result.steiner_a, result.steiner_b});
+  std::string added = "[";
+  for (std::size_t k = features.size(); k < result.features.size(); ++k)
+    added += std::string(k > features.size() ? ", " : "") + JsonObject::array(std::vector<int>{
+                                                                 result.features[k].a, result.features[k].b});
+  out.added_features = added + "]";
+  out.outputs = JsonObject::array(outputs);
+  const auto computed = [](double median) { return median < 0 ? std::nullopt : std::optional<double>(median); };
+  out.json.add("genus", result.genus)
+      .add("method", cmaps::method_name(result.method))
+      .add("sphere_median_dirichlet", computed(result.sphere_median_dirichlet))
+      .add("partition_median_dirichlet", computed(result.partition_median_dirichlet))
+      .add_json("degenerate", JsonObject::array(std::vector<int>{ab.degenerate, ba.degenerate}))
+      .add_json("median_symmetric_dirichlet", JsonObject::array(std::vector<double>{
+                                                  ab.median_symmetric_dirichlet, ba.median_symmetric_dirichlet}))
+      .add("sphere_flipped", result.sphere_flipped)
+      .add_json("refitted", std::string(result.refitted_a ? "[true, " : "[false, ") +
+                                (result.refitted_b ? "true]" : "false]"))
+      .add("balanced_patches", result.balanced_patches)
+      .add("patch_area_ratio", result.patch_area_ratio)
+      .add("base_vertices", result.base_vertices)
+      .add("base_triangles", result.base_triangles)
+      .add("seconds_features", result.seconds_features)
+      .add_json("composition_dirichlet",
+                JsonObject::array(std::vector<double>{result.composition_a_to_b.symmetric_dirichlet,
+                                                      result.composition_b_to_a.symmetric_dirichlet}))
+      .add("restart_dirichlet", result.restart_dirichlet)
+      .add("restart_median_dirichlet", result.restart_median_dirichlet)
+      .add_json("restart_flipped", JsonObject::array(result.restart_flipped))
+      .add("start_median_dirichlet", result.start_median_dirichlet)
+      .add("seconds_partition", result.seconds_partition)
+      .add("seconds_parameterize", result.seconds_parameterize)
+      .add("seconds_optimize", result.seconds_optimize)
+      .add("seconds_locate", result.seconds_locate)
+      .add("seconds_measure", result.seconds_measure)
+      .add("seconds_compute", result.seconds)
+      .add("seed", static_cast<unsigned long long>(args.seed))
+      .add("effort", args.effort)
+      .add("threads", args.threads)
+      .add("output", args.output);
+
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "%zu feature pairs (%d added), symmetric Dirichlet %.4f (A to B) / %.4f (B to A), %d / %d flipped, "
+                "%d + %d Steiner vertices",
+                result.features.size(), result.added_features, ab.symmetric_dirichlet, ba.symmetric_dirichlet,
+                ab.flipped, ba.flipped, result.steiner_a, result.steiner_b);
+  out.summary = "wrote " + std::to_string(outputs.size()) + " files to " + args.output + ": " + line;
+}
+
+}  // namespace cmaps::cli

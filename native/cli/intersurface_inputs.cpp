@@ -1,0 +1,52 @@
+#include "intersurface_inputs.h"
+
+#include <map>
+#include <string>
+
+#include "command_io.h"
+#include "consistent_maps/errors.h"
+#include "json_reader.h"
+
+namespace cmaps::cli {
+
+std::vector<cmaps::FeaturePair> read_feature_pairs(const Arguments& args, const cmaps::TriangleMesh& a,
+                                                   const cmaps::TriangleMesh& b) {
+  if (args.features.empty()) return {};
+  std::vector<cmaps::FeaturePair> pairs;
+  std::map<int, std::string> seen[2];
+  const cmaps::TriangleMesh* meshes[2] = {&a, &b};
+  for (const auto& [name, vertices] : cmaps::read_set_feature_file(args.features, 2)) {
+    for (int i = 0; i < 2; ++i) {
+      const std::string& path = args.inputs[i];
+      const int v = vertices[i], n = int(meshes[i]->vertices.size());
+      if (v < 0)
+        throw cmaps::InvalidInput(args.features + ": feature " + in_quotes(name) + " has no vertex on " + path +
+                                  "; an inter-surface feature needs one on both meshes");
+      if (v >= n)
+        throw cmaps::InvalidInput(args.features + ": feature " + in_quotes(name) + ": vertex " + std::to_string(v) +
+                                  " is out of range for " + path + " (" + std::to_string(n) + " vertices)");
+      const auto [it, inserted] = seen[i].emplace(v, name);
+      if (!inserted)
+        throw cmaps::InvalidInput(args.features + ": features " + in_quotes(it->second) + " and " + in_quotes(name) +
+                                  " are both vertex " + std::to_string(v) + " of " + path);
+    }
+    pairs.push_back({vertices[0], vertices[1]});
+  }
+  return pairs;
+}
+
+cmaps::IntersurfaceOptions intersurface_options(const Arguments& args) {
+  cmaps::IntersurfaceOptions options;
+  options.sphere.seed = args.seed;
+  options.sphere.effort = args.effort;
+  options.sphere.threads = args.threads;
+  options.optimize_rounds = args.optimize;
+  if (args.optimize == 0) options.correspondence_weight = 0;  // the plain composition
+  options.cross_sweeps = args.cross_sweeps;
+  options.restarts = args.restarts;
+  options.starts = args.starts;
+  options.method = args.method.value_or(cmaps::IntersurfaceMethod::automatic);
+  return options;
+}
+
+}  // namespace cmaps::cli
