@@ -223,7 +223,8 @@ Arguments parse(const std::vector<std::string>& args) {
     throw UsageError(a.command + " takes no --restarts (only consistent, intersurface and transfer do)");
   if (a.method && a.command != "intersurface" && a.command != "transfer")
     throw UsageError(a.command + " takes no --method (only intersurface and transfer do)");
-  if (a.positions && a.command != "transfer") throw UsageError(a.command + " takes no --positions (only transfer does)");
+  if (a.positions && a.command != "transfer")
+    throw UsageError(a.command + " takes no --positions (only transfer does)");
   if (a.align && a.command != "consistent") throw UsageError(a.command + " takes no --align (only consistent does)");
   if (a.command != "consistent") {
     for (const auto& [option, given] : {std::pair<const char*, bool>{"--remesh", a.remesh_given},
@@ -247,7 +248,8 @@ Arguments parse(const std::vector<std::string>& args) {
   } else if (a.command == "intersurface" || a.command == "transfer") {
     if (a.inputs.size() != 2)
       throw UsageError(a.command + " needs 2 input meshes (" +
-                       (a.command == "transfer" ? "SOURCE TARGET" : "A B") + "), got " + std::to_string(a.inputs.size()));
+                       (a.command == "transfer" ? "SOURCE TARGET" : "A B") + "), got " +
+                       std::to_string(a.inputs.size()));
     for (const auto& [option, given] : {std::pair<const char*, const std::string&>{"--targets", a.targets},
                                         {"--refined-mesh", a.refined_mesh}})
       if (!given.empty()) throw UsageError(a.command + " takes no " + std::string(option) + " (only constrained does)");

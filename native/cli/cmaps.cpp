@@ -1,8 +1,9 @@
-// The `cmaps` command-line tool: check a mesh, compute its spherical
-// parameterization (unconstrained or with feature vertices at given points),
-// or the consistent parameterization of a set with its remeshes and geometry
-// images. Every failure ends as exit code 1 (2 for usage errors) with one line "cmaps: error: ..." on stderr, and with --json also as one
-// JSON object carrying "error" on stdout.
+// The `cmaps` command-line tool: check a mesh, map it to the sphere (with or
+// without feature points), parameterize a set consistently, map two meshes of
+// the same genus onto each other or carry attributes across (one file per
+// command). Every failure ends as exit code 1 (2 for usage errors) with one
+// line "cmaps: error: ..." on stderr, and with --json also as one JSON object
+// carrying "error" on stdout.
 #include <algorithm>
 #include <chrono>
 #include <iostream>

@@ -13,6 +13,12 @@ namespace cmaps::cli {
 
 std::string in_quotes(const std::string& name) { return JsonObject::quote(name); }
 
+std::string lowercase_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
 cmaps::ProgressCallback terminal_progress(bool enabled) {
   if (!enabled) return {};
   return [](double fraction, const std::string& stage) {
@@ -23,8 +29,7 @@ cmaps::ProgressCallback terminal_progress(bool enabled) {
 }
 
 void check_output_path(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = lowercase_extension(path);
   if (ext != ".obj" && ext != ".ply" && ext != ".off")
     throw UsageError("output '" + path + "' must end in .obj, .ply or .off");
   const std::filesystem::path parent = std::filesystem::path(path).parent_path();

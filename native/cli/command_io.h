@@ -12,6 +12,9 @@ namespace cmaps::cli {
 // A name in double quotes, as error messages cite features.
 std::string in_quotes(const std::string& name);
 
+// The extension of `path` in lower case, with its dot (".obj"), or "".
+std::string lowercase_extension(const std::string& path);
+
 // Progress on an interactive terminal only: logs and pipes get the result alone.
 cmaps::ProgressCallback terminal_progress(bool enabled);
 

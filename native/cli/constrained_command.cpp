@@ -37,8 +37,8 @@ Constraints read_constraints(const Arguments& args, int vertex_count) {
                                 " is out of range (the mesh has " + std::to_string(vertex_count) + " vertices)");
     const auto [it, inserted] = by_vertex.emplace(vertex, name);
     if (!inserted)
-      throw cmaps::InvalidInput(args.features + ": features " + in_quotes(it->second) + " and " + in_quotes(name) + " are both vertex " +
-                                std::to_string(vertex));
+      throw cmaps::InvalidInput(args.features + ": features " + in_quotes(it->second) + " and " + in_quotes(name) +
+                                " are both vertex " + std::to_string(vertex));
     c.names.push_back(name);
     c.vertices.push_back(vertex);
   }
@@ -57,15 +57,16 @@ Constraints read_constraints(const Arguments& args, int vertex_count) {
       throw cmaps::InvalidInput("feature " + in_quotes(name) + " has no target in " + args.targets);
     const cmaps::Vec3& p = it->second;
     if (!p.allFinite()) throw cmaps::InvalidInput(args.targets + ": target " + in_quotes(name) + " is not finite");
-    if (!(p.norm() > 0)) throw cmaps::InvalidInput(args.targets + ": target " + in_quotes(name) + " is the zero vector");
+    if (!(p.norm() > 0))
+      throw cmaps::InvalidInput(args.targets + ": target " + in_quotes(name) + " is the zero vector");
     c.targets.push_back(p);
   }
   // Same tolerance as the library, which would report indices instead of names.
   for (std::size_t i = 0; i < c.targets.size(); ++i)
     for (std::size_t j = i + 1; j < c.targets.size(); ++j)
       if ((c.targets[i].normalized() - c.targets[j].normalized()).norm() < 1e-9)
-        throw cmaps::InvalidInput(args.targets + ": targets " + in_quotes(c.names[i]) + " and " + in_quotes(c.names[j]) +
-                                  " are equal (after normalization)");
+        throw cmaps::InvalidInput(args.targets + ": targets " + in_quotes(c.names[i]) + " and " +
+                                  in_quotes(c.names[j]) + " are equal (after normalization)");
   return c;
 }
 

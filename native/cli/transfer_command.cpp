@@ -2,10 +2,8 @@
 // onto TARGET through their inter-surface map.
 #include <unistd.h>
 
-#include <algorithm>
-#include <cctype>
 #include <cstdio>
-#include <filesystem>
+#include <utility>
 
 #include "command_io.h"
 #include "commands.h"
@@ -20,16 +18,14 @@ namespace cmaps::cli {
 void run_transfer(const Arguments& args, Outcome& out) {
   out.intersurface = out.transfer = true;
   check_output_path(args.output);
-  std::string ext = std::filesystem::path(args.output).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (ext != ".obj") throw UsageError("transfer writes OBJ: output '" + args.output + "' must end in .obj");
+  if (lowercase_extension(args.output) != ".obj")
+    throw UsageError("transfer writes OBJ: output '" + args.output + "' must end in .obj");
   out.json.add_json("inputs", JsonObject::array(args.inputs));
   const std::string &source_path = args.inputs[0], &target_path = args.inputs[1];
   const cmaps::TriangleMesh source = cmaps::read_mesh(source_path);
   const cmaps::TriangleMesh target = cmaps::read_mesh(target_path);
   out.faces_per_input = JsonObject::array(std::vector<int>{int(source.triangles.size()), int(target.triangles.size())});
-  std::string source_ext = std::filesystem::path(source_path).extension().string();
-  std::transform(source_ext.begin(), source_ext.end(), source_ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string source_ext = lowercase_extension(source_path);
   const cmaps::ObjAttributes attributes =
       source_ext == ".obj" ? cmaps::read_obj_attributes(source_path) : cmaps::ObjAttributes{};
   const bool colours = !attributes.colors.empty(), uvs = !attributes.triangle_uvs.empty();
@@ -83,7 +79,8 @@ void run_transfer(const Arguments& args, Outcome& out) {
   std::string what;
   for (const std::string& name : transferred) what += (what.empty() ? "" : ", ") + name;
   char line[256];
-  std::snprintf(line, sizeof line, " through %zu feature pairs (%d added), symmetric Dirichlet %.4f (target onto source)",
+  std::snprintf(line, sizeof line,
+                " through %zu feature pairs (%d added), symmetric Dirichlet %.4f (target onto source)",
                 map.features.size(), map.added_features, ts.symmetric_dirichlet);
   out.summary = "wrote " + args.output + ": " + what + " of " + source_path + " on " + target_path + line;
 }
