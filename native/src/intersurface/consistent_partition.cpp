@@ -5,31 +5,27 @@
 #include <functional>
 #include <limits>
 #include <numeric>
-#include <queue>
 #include <string>
 #include <unordered_map>
-#include <unordered_set>
 
 #include "consistent_maps/errors.h"
 #include "consistent_maps/mesh_check.h"
+#include "intersurface/partition_network.h"
 #include "intersurface/path_guide.h"
+#include "intersurface/tree_cotree.h"
 #include "paths/mesh_search.h"
 
 namespace cmaps {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kMidpointPenalty = 1.0;  // a step through an edge midpoint costs 1 + this times its length
-constexpr int kNearest = 10;              // tree candidates: each feature's nearest features
-constexpr int kJoinAttempts = 40;         // corner pairs tried to join two boundary walks
-constexpr int kDiagonalAttempts = 8;      // nearest corner pairs traced to split a face (the shortest is laid)
+using partition::End;
+using partition::Side;
+using partition::tree_cotree_cycle;
 
-// One end of a path: `end` 0 at its first vertex, 1 at its last.
-struct End {
-  int path = -1;
-  int end = 0;
-  bool operator==(const End& o) const { return path == o.path && end == o.end; }
-};
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr int kNearest = 10;          // tree candidates: each feature's nearest features
+constexpr int kJoinAttempts = 40;     // corner pairs tried to join two boundary walks
+constexpr int kDiagonalAttempts = 8;  // nearest corner pairs traced to split a face (the shortest is laid)
 
 // How a new path may attach at one of its features: anywhere on both meshes,
 // anywhere on A and through the corresponding sector on B, or in the sector
@@ -49,213 +45,6 @@ struct Walk {
   std::vector<Corner> corners;
   std::vector<End> after;    // per corner: the end it follows (names it while ends are added elsewhere)
   std::vector<End> leaving;  // per corner: the end through which the walk leaves it
-};
-
-class Side {
- public:
-  Side(const TriangleMesh& mesh, int first_fan)
-      : mesh(mesh), first_fan(first_fan), blocked(this->mesh.vertex_count(), 0) {}
-
-  EditableMesh mesh;
-  int first_fan;              // triangles refined from input triangles at or past this fill a hole
-  std::vector<char> blocked;  // features and path vertices
-  std::unordered_set<int> path_edges;
-  std::vector<int> feature;
-  std::vector<std::vector<int>> paths;
-
-  bool fan(int f) const { return mesh.input_triangle(f) >= first_fan; }
-
-  // Regions (see regions()) that hold surface, not a hole's fan.
-  int surface_regions() const {
-    int count = 0;
-    const std::vector<int> region = regions(count);
-    std::vector<char> surface(count, 0);
-    for (int f = 0; f < int(region.size()); ++f)
-      if (!fan(f)) surface[region[f]] = 1;
-    return int(std::count(surface.begin(), surface.end(), 1));
-  }
-
-  void add_feature(int v) {
-    feature.push_back(v);
-    blocked[v] = 1;
-  }
-
-  int split(int e) {
-    const int m = mesh.split_edge(e);
-    blocked.push_back(0);
-    return m;
-  }
-
-  int first_step(const End& x) const {
-    const std::vector<int>& p = paths[x.path];
-    return x.end == 0 ? p[1] : p[p.size() - 2];
-  }
-
-  // The ends at feature f, counter-clockwise.
-  std::vector<End> ends(int f, const std::vector<std::array<int, 2>>& edges) const {
-    const std::vector<int> ring = mesh.ring(feature[f]);
-    std::unordered_map<int, int> at;
-    for (int k = 0; k < int(ring.size()); ++k) at[ring[k]] = k;
-    std::vector<std::pair<int, End>> found;
-    for (int p = 0; p < int(edges.size()); ++p)
-      for (int e = 0; e < 2; ++e)
-        if (edges[p][e] == f) found.push_back({at.at(first_step({p, e})), End{p, e}});
-    std::sort(found.begin(), found.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-    std::vector<End> result;
-    for (const auto& item : found) result.push_back(item.second);
-    return result;
-  }
-
-  // Ring positions of f's search neighbours (as in path_network.cpp): ring
-  // vertex k at k, the midpoint of ring edge (k, k+1) at k + 0.5, the
-  // midpoint of the edge to ring vertex k at k.
-  Sector positions(int f, int vertices, bool midpoints) const {
-    Sector s;
-    const int v = feature[f];
-    const std::vector<int> ring = mesh.ring(v);
-    s.size = double(ring.size());
-    for (int k = 0; k < int(ring.size()); ++k) {
-      s.position[ring[k]] = k;
-      if (midpoints) {
-        s.position[vertices + mesh.edge(ring[k], ring[(k + 1) % ring.size()])] = k + 0.5;
-        s.position[vertices + mesh.edge(v, ring[k])] = k;
-      }
-    }
-    return s;
-  }
-
-  // The sector after end x at f (up to the next end counter-clockwise).
-  Sector after(int f, const End& x, const std::vector<End>& around, int vertices, bool midpoints) const {
-    Sector s = positions(f, vertices, midpoints);
-    if (x.path < 0 || around.empty()) return s;
-    const int i = int(std::find(around.begin(), around.end(), x) - around.begin());
-    if (i == int(around.size())) throw Error("internal error: end not found around its feature");
-    const std::vector<int> ring = mesh.ring(feature[f]);
-    const auto pos = [&](const End& e) { return double(std::find(ring.begin(), ring.end(), first_step(e)) - ring.begin()); };
-    s.everything = false;
-    s.lo = pos(x);
-    s.span = around.size() == 1 ? s.size : std::fmod(pos(around[(i + 1) % around.size()]) - s.lo + s.size, s.size);
-    return s;
-  }
-
-  // The end after which a path through search node `node` leaves f.
-  End gap_of(int f, int node, const std::vector<End>& around, int vertices, bool midpoints) const {
-    if (around.empty()) return {};
-    const Sector s = positions(f, vertices, midpoints);
-    const std::vector<int> ring = mesh.ring(feature[f]);
-    const double q = s.position.at(node);
-    End best = around.back();
-    for (const End& e : around)
-      if (double(std::find(ring.begin(), ring.end(), first_step(e)) - ring.begin()) < q) best = e;
-    return best;
-  }
-
-  using StepFactor = std::function<double(const Vec3&)>;
-
-  std::vector<int> trace(int from, int to, const Sector* leave, const Sector* enter, bool midpoints,
-                         const StepFactor* factor) const {
-    SearchRules rules;
-    rules.step_factor = factor;
-    rules.blocked = &blocked;
-    rules.closed_edges = &path_edges;
-    rules.leave = leave;
-    rules.enter = enter;
-    rules.midpoints = midpoints;
-    rules.midpoint_penalty = kMidpointPenalty;
-    return shortest_path(mesh, feature[from], feature[to], rules);
-  }
-
-  double step(int u, int w, const std::vector<double>* weight) const {
-    const double length = (mesh.position(w) - mesh.position(u)).norm();
-    return weight ? length * 0.5 * ((*weight)[u] + (*weight)[w]) : length;
-  }
-
-  // Turns a traced node sequence into mesh vertices (splitting the edges of
-  // midpoint nodes) and blocks it.
-  void lay(const std::vector<int>& nodes, int vertices) {
-    std::vector<int> path;
-    for (int node : nodes) path.push_back(node < vertices ? node : split(node - vertices));
-    register_path(reconnect_traced_path(mesh, path, vertices));
-  }
-
-  void register_path(const std::vector<int>& path) {
-    for (size_t i = 0; i + 1 < path.size(); ++i) path_edges.insert(mesh.edge(path[i], path[i + 1]));
-    for (int v : path) blocked[v] = 1;
-    paths.push_back(path);
-  }
-
-  // Per triangle: its region (triangles connected across non-path edges).
-  std::vector<int> regions(int& count) const {
-    const int faces = int(mesh.triangles().size());
-    std::vector<int> region(faces, -1);
-    count = 0;
-    for (int seed = 0; seed < faces; ++seed) {
-      if (region[seed] >= 0) continue;
-      std::vector<int> stack{seed};
-      region[seed] = count;
-      while (!stack.empty()) {
-        const int f = stack.back();
-        stack.pop_back();
-        const Triangle& t = mesh.triangles()[f];
-        for (int k = 0; k < 3; ++k) {
-          const int e = mesh.edge(t[k], t[(k + 1) % 3]);
-          if (path_edges.count(e)) continue;
-          const auto& two = mesh.edge_faces(e);
-          const int g = two[0] == f ? two[1] : two[0];
-          if (region[g] < 0) {
-            region[g] = count;
-            stack.push_back(g);
-          }
-        }
-      }
-      ++count;
-    }
-    return region;
-  }
-
-  // A triangle in the sector after end x at f.
-  int corner_face(int f, const End& x) const {
-    const int v = feature[f];
-    if (x.path < 0) return mesh.faces_of(v).front();
-    const std::vector<int> ring = mesh.ring(v);
-    const int k = int(std::find(ring.begin(), ring.end(), first_step(x)) - ring.begin());
-    const int b = ring[k], c = ring[(k + 1) % ring.size()];
-    for (int t : mesh.faces_of(v)) {
-      const Triangle& tri = mesh.triangles()[t];
-      if (std::count(tri.begin(), tri.end(), b) && std::count(tri.begin(), tri.end(), c)) return t;
-    }
-    throw Error("internal error: no triangle in a corner");
-  }
-
-  // Dijkstra over unblocked vertices (of the triangles in `faces` when
-  // given) from `sources`; distances and parents; steps weighted as in
-  // SearchRules::step_factor by the per-vertex `weight` when given.
-  void dijkstra(const std::vector<int>& sources, const std::vector<char>* allowed, std::vector<double>& dist,
-                std::vector<int>& parent, const std::vector<double>* weight = nullptr) const {
-    const int n = mesh.vertex_count();
-    dist.assign(n, kInf);
-    parent.assign(n, -1);
-    using Entry = std::pair<double, int>;
-    std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> open;
-    for (int s : sources) {
-      dist[s] = 0;
-      open.push({0, s});
-    }
-    while (!open.empty()) {
-      const auto [d, u] = open.top();
-      open.pop();
-      if (d > dist[u]) continue;
-      for (int w : mesh.ring(u)) {
-        if (blocked[w] || (allowed && !(*allowed)[w])) continue;
-        const double nd = d + step(u, w, weight);
-        if (nd < dist[w]) {
-          dist[w] = nd;
-          parent[w] = u;
-          open.push({nd, w});
-        }
-      }
-    }
-  }
 };
 
 class Partitioner {
@@ -518,93 +307,6 @@ class Partitioner {
       if (connect(x.first, y.first, {Attach::kFixed, x.second}, {Attach::kFixed, y.second})) return;
     }
     throw Error("could not join two boundaries of the cut surface by corresponding paths");
-  }
-
-  // The shortest non-separating cycle that tree-cotree finds from `root` on
-  // side s (steps weighted by `factor` when given); empty when none.
-  std::vector<int> tree_cotree_cycle(const Side& side, int root, const Side::StepFactor* factor) const {
-    std::vector<double> weight;
-    if (factor)
-      for (int v = 0; v < side.mesh.vertex_count(); ++v) weight.push_back((*factor)(side.mesh.position(v)));
-    const std::vector<double>* weights = factor ? &weight : nullptr;
-    std::vector<int> parent;
-    std::vector<double> dist;
-    side.dijkstra({root}, nullptr, dist, parent, weights);
-    const int edges = side.mesh.edge_count();
-    std::vector<char> tree(edges, 0), cotree(edges, 0);
-    for (int v = 0; v < side.mesh.vertex_count(); ++v)
-      if (parent[v] >= 0) tree[side.mesh.edge(v, parent[v])] = 1;
-    // Cotree: a maximum spanning tree of the faces across non-path,
-    // non-tree edges, weighted by the length of the loop each edge closes
-    // with the tree (Erickson & Whittlesey 2005): the edges left over then
-    // close the shortest loops, among them the shortest non-separating one
-    // through the root. Edges at a path vertex close no usable loop and go
-    // into the cotree first.
-    const int faces = int(side.mesh.triangles().size());
-    std::vector<int> group(faces);
-    std::iota(group.begin(), group.end(), 0);
-    const std::function<int(int)> find = [&](int x) {
-      while (group[x] != x) x = group[x] = group[group[x]];
-      return x;
-    };
-    std::vector<std::pair<double, int>> order;
-    for (int e = 0; e < edges; ++e) {
-      const auto [u, w] = side.mesh.edge_vertices(e);
-      if (u < 0 || tree[e] || side.path_edges.count(e)) continue;
-      const bool usable = !side.blocked[u] && !side.blocked[w] && std::isfinite(dist[u]) && std::isfinite(dist[w]);
-      order.push_back({usable ? dist[u] + dist[w] + side.step(u, w, weights) : kInf, e});
-    }
-    std::sort(order.begin(), order.end(), std::greater<>());
-    for (const auto& [length, e] : order) {
-      const auto& two = side.mesh.edge_faces(e);
-      const int x = find(two[0]), y = find(two[1]);
-      if (x != y) {
-        group[x] = y;
-        cotree[e] = 1;
-      }
-    }
-    std::vector<int> depth(side.mesh.vertex_count(), -1);
-    const auto depth_of = [&](int v) {
-      std::vector<int> chain;
-      for (int u = v; depth[u] < 0; u = parent[u]) {
-        chain.push_back(u);
-        if (parent[u] < 0) {
-          depth[u] = 0;
-          chain.pop_back();
-          break;
-        }
-      }
-      for (auto it = chain.rbegin(); it != chain.rend(); ++it) depth[*it] = depth[parent[*it]] + 1;
-      return depth[v];
-    };
-    const auto lca = [&](int u, int w) {
-      while (depth_of(u) > depth_of(w)) u = parent[u];
-      while (depth_of(w) > depth_of(u)) w = parent[w];
-      while (u != w) u = parent[u], w = parent[w];
-      return u;
-    };
-    double best = kInf;
-    int bu = -1, bw = -1;
-    for (int e = 0; e < edges; ++e) {
-      const auto [u, w] = side.mesh.edge_vertices(e);
-      if (u < 0 || tree[e] || cotree[e] || side.path_edges.count(e) || side.blocked[u] || side.blocked[w]) continue;
-      if (!std::isfinite(dist[u]) || !std::isfinite(dist[w])) continue;
-      const double length =
-          dist[u] + dist[w] + side.step(u, w, weights) - 2 * dist[lca(u, w)];
-      if (length < best) best = length, bu = u, bw = w;
-    }
-    if (bu >= 0) {
-      const int apex = lca(bu, bw);
-      std::vector<int> cycle, back;
-      for (int v = bu; v != apex; v = parent[v]) cycle.push_back(v);
-      cycle.push_back(apex);
-      std::reverse(cycle.begin(), cycle.end());
-      for (int v = bw; v != apex; v = parent[v]) back.push_back(v);
-      cycle.insert(cycle.end(), back.begin(), back.end());
-      cycle.push_back(apex);
-      return cycle;
-    }
-    return {};
   }
 
   // The shortest non-separating cycle found by tree-cotree in the single
