@@ -83,7 +83,8 @@ std::vector<std::array<double, 2>> continue_across_seams(const std::vector<Trian
 // colours per target vertex at its image; texture coordinates per target
 // corner from map.a_corners_to_b (computed with options.corner_images), each
 // target triangle's in one chart (continue_across_seams), the coordinates of
-// one target vertex shared between its corners where they agree. Throws InvalidInput when the map or the attributes do not fit the meshes.
+// one target vertex shared between its corners where they agree. Throws
+// InvalidInput when the map or the attributes do not fit the meshes.
 ObjAttributes transfer_obj_attributes(const TriangleMesh& source, const ObjAttributes& source_attributes,
                                       const TriangleMesh& target, const IntersurfaceResult& map);
 

@@ -210,7 +210,8 @@ class Partitioner {
         if (j != i) near.push_back({cost(i, j), j});
       std::sort(near.begin(), near.end());
       for (int n = 0; n < int(near.size()); ++n)
-        if (n < kNearest || k <= 2 * kNearest) candidates.push_back({near[n].first, {std::min(i, near[n].second), std::max(i, near[n].second)}});
+        if (n < kNearest || k <= 2 * kNearest)
+          candidates.push_back({near[n].first, {std::min(i, near[n].second), std::max(i, near[n].second)}});
     }
     std::sort(candidates.begin(), candidates.end());
     candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
@@ -377,7 +378,8 @@ class Partitioner {
         turned.insert(turned.end(), cycle[1].begin(), cycle[1].begin() + k + 1);
         cycle[1] = std::move(turned);
       }
-      for (size_t i = 0; i + 1 < cycle[s].size(); ++i) side.path_edges.insert(side.mesh.edge(cycle[s][i], cycle[s][i + 1]));
+      for (size_t i = 0; i + 1 < cycle[s].size(); ++i)
+        side.path_edges.insert(side.mesh.edge(cycle[s][i], cycle[s][i + 1]));
       for (int v : cycle[s]) side.blocked[v] = 1;
     }
     const int p = add_pair(cycle[0].front(), cycle[1].front());
@@ -397,7 +399,8 @@ class Partitioner {
       const auto pos = [&](int v) { return std::find(ring.begin(), ring.end(), v) - ring.begin(); };
       const long n = long(ring.size());
       const long join_at = pos(side.paths.back()[1]);
-      const long out = (pos(cycle[s][1]) - join_at + n) % n, in = (pos(cycle[s][cycle[s].size() - 2]) - join_at + n) % n;
+      const long out = (pos(cycle[s][1]) - join_at + n) % n;
+      const long in = (pos(cycle[s][cycle[s].size() - 2]) - join_at + n) % n;
       ccw[s] = out < in;
     }
     if (ccw[0] != ccw[1]) std::reverse(cycle[1].begin(), cycle[1].end());

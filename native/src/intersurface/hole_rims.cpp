@@ -84,12 +84,14 @@ std::vector<HoleRim> pair_hole_rims(const ClosedMesh& a, const ClosedMesh& b,
     std::vector<std::array<int, 2>> at = on_rim[h];
     std::sort(at.begin(), at.end());
     // The same cyclic order on B: B's positions rise from the smallest, once around.
-    const auto lowest = std::min_element(at.begin(), at.end(), [](const auto& x, const auto& y) { return x[1] < y[1]; });
+    const auto lowest =
+        std::min_element(at.begin(), at.end(), [](const auto& x, const auto& y) { return x[1] < y[1]; });
     for (std::size_t i = 1; i < at.size(); ++i) {
       const auto& p = at[(lowest - at.begin() + i - 1) % at.size()];
       const auto& q = at[(lowest - at.begin() + i) % at.size()];
       if (q[1] <= p[1])
-        throw InvalidInput("the feature pairs on hole " + std::to_string(h) + " of A run around it in another order on B");
+        throw InvalidInput("the feature pairs on hole " + std::to_string(h) +
+                           " of A run around it in another order on B");
     }
     if (at.empty()) {
       std::vector<Vec3> rim_b;

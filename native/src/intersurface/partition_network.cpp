@@ -76,7 +76,9 @@ Sector Side::after(int f, const End& x, const std::vector<End>& around, int vert
   const int i = int(std::find(around.begin(), around.end(), x) - around.begin());
   if (i == int(around.size())) throw Error("internal error: end not found around its feature");
   const std::vector<int> ring = mesh.ring(feature[f]);
-  const auto pos = [&](const End& e) { return double(std::find(ring.begin(), ring.end(), first_step(e)) - ring.begin()); };
+  const auto pos = [&](const End& e) {
+    return double(std::find(ring.begin(), ring.end(), first_step(e)) - ring.begin());
+  };
   s.everything = false;
   s.lo = pos(x);
   s.span = around.size() == 1 ? s.size : std::fmod(pos(around[(i + 1) % around.size()]) - s.lo + s.size, s.size);

@@ -313,7 +313,8 @@ PatchBalance balance_patch_areas(ConsistentPartition& partition, int rounds) {
     scale[s] = std::sqrt(area / partition.sides[s].input_triangles);
   }
   PatchBalance result;
-  std::array<std::vector<double>, 2> own = {area_shares(partition.sides[0], patches), area_shares(partition.sides[1], patches)};
+  std::array<std::vector<double>, 2> own = {area_shares(partition.sides[0], patches),
+                                            area_shares(partition.sides[1], patches)};
   result.worst_before = worst_ratio(own[0], own[1]);
   for (int round = 0; round < rounds; ++round) {
     int moved = 0;

@@ -48,8 +48,10 @@ double stretch_of(const PartitionSide& side, const std::unordered_map<int, Vec2>
     const double a3 = 0.5 * (q[1] - q[0]).cross(q[2] - q[0]).norm();
     double squared = std::numeric_limits<double>::infinity();
     if (std::abs(a2) > 0) {
-      const Vec3 ss = (q[0] * (p[1].y() - p[2].y()) + q[1] * (p[2].y() - p[0].y()) + q[2] * (p[0].y() - p[1].y())) / (2 * a2);
-      const Vec3 st = (q[0] * (p[2].x() - p[1].x()) + q[1] * (p[0].x() - p[2].x()) + q[2] * (p[1].x() - p[0].x())) / (2 * a2);
+      const Vec3 ss =
+          (q[0] * (p[1].y() - p[2].y()) + q[1] * (p[2].y() - p[0].y()) + q[2] * (p[0].y() - p[1].y())) / (2 * a2);
+      const Vec3 st =
+          (q[0] * (p[2].x() - p[1].x()) + q[1] * (p[0].x() - p[2].x()) + q[2] * (p[1].x() - p[0].x())) / (2 * a2);
       squared = 0.5 * (ss.squaredNorm() + st.squaredNorm());
     }
     all += a3 * squared, all_area += a3;
@@ -129,7 +131,8 @@ InputLocation to_input(const PartitionSide& side, const TriangleMesh& input, int
     }
   }
   if (stray > 1e-12) {  // never, up to the refinement's bookkeeping: project onto the triangle
-    const Vec3 &a = input.vertices[corners[0]], e1 = input.vertices[corners[1]] - a, e2 = input.vertices[corners[2]] - a;
+    const Vec3& a = input.vertices[corners[0]];
+    const Vec3 e1 = input.vertices[corners[1]] - a, e2 = input.vertices[corners[2]] - a;
     const double aa = e1.dot(e1), ab = e1.dot(e2), bb = e2.dot(e2), det = aa * bb - ab * ab;
     const Vec3 d = x - a;
     const double s = det > 0 ? (bb * d.dot(e1) - ab * d.dot(e2)) / det : 0;
@@ -179,7 +182,8 @@ PatchParameterization parameterize_patches(PartitionSide& side, const Consistent
   return result;
 }
 
-double patch_stretch(const PartitionSide& side, const std::unordered_map<int, Vec2>& uv, const std::vector<int>& faces) {
+double patch_stretch(const PartitionSide& side, const std::unordered_map<int, Vec2>& uv,
+                     const std::vector<int>& faces) {
   return stretch_of(side, uv, faces, nullptr);
 }
 

@@ -101,7 +101,8 @@ TriangleMesh read_obj(const std::string& path, const std::string& text) {
       polygon.clear();
       for (size_t i = 1; i < t.size(); ++i) {
         long long index = 0;
-        if (!parse_index(t[i], index) || index == 0) malformed(path, lines.number(), "bad face index '" + std::string(t[i]) + "'");
+        if (!parse_index(t[i], index) || index == 0)
+          malformed(path, lines.number(), "bad face index '" + std::string(t[i]) + "'");
         // OBJ counts from 1; negative indices count back from the latest vertex.
         polygon.push_back(saturate(index > 0 ? index - 1 : (long long)mesh.vertices.size() + index));
       }

@@ -58,7 +58,8 @@ GeometryImage read_geometry_image_npy(const std::string& path) {
   if (!std::regex_search(header, descr, std::regex("'descr':\\s*'([<|]f[48])'")))
     throw fail("expected little-endian float32 or float64 data");
   if (std::regex_search(header, std::regex("'fortran_order':\\s*True"))) throw fail("Fortran order is not supported");
-  if (!std::regex_search(header, shape, std::regex("'shape':\\s*\\(\\s*(\\d{1,9})\\s*,\\s*(\\d{1,9})\\s*,\\s*3\\s*,?\\s*\\)")))
+  const std::regex shape_pattern("'shape':\\s*\\(\\s*(\\d{1,9})\\s*,\\s*(\\d{1,9})\\s*,\\s*3\\s*,?\\s*\\)");
+  if (!std::regex_search(header, shape, shape_pattern))
     throw fail("expected shape (n+1, n+1, 3)");
   const long side = std::stol(shape[1]);
   if (side != std::stol(shape[2]) || side < 3 || side % 2 == 0 || side > 46341)

@@ -180,7 +180,9 @@ ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mes
                            "without crossing (are they in the order the features run along each hole?)");
     }
     std::set<Triangle> faces(layout.begin(), layout.end());
-    auto has = [&](int a, int b, int c) { return faces.count({a, b, c}) || faces.count({b, c, a}) || faces.count({c, a, b}); };
+    auto has = [&](int a, int b, int c) {
+      return faces.count({a, b, c}) || faces.count({b, c, a}) || faces.count({c, a, b});
+    };
     for (int h = 0; h < holes; ++h) {
       const auto& ring = hole_rings[h];
       for (size_t j = 0; j < ring.size(); ++j)
@@ -245,7 +247,8 @@ ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mes
   // Simplify down to the features, collapsing path vertices along their paths.
   const auto simplify_start = std::chrono::steady_clock::now();
   TriangleMesh refined{std::vector<Vec3>(editable.vertex_count()), editable.triangles()};
-  for (int v = 0; v < editable.vertex_count(); ++v) refined.vertices[v] = on_surface(editable.surface_point(v), positions);
+  for (int v = 0; v < editable.vertex_count(); ++v)
+    refined.vertices[v] = on_surface(editable.surface_point(v), positions);
   SimplificationOptions simplification;
   simplification.locked.assign(refined.vertices.size(), 0);
   for (int v : base_vertices) simplification.locked[v] = 1;
@@ -328,7 +331,8 @@ ConstrainedResult constrained_spherical_parameterization(const TriangleMesh& mes
   }
   result.report = measure_spherical_map(measured, out_sphere);
   for (int i = 0; i < k; ++i)
-    result.max_constraint_error = std::max(result.max_constraint_error, (sphere[features[i]] - result.targets[i]).norm());
+    result.max_constraint_error =
+        std::max(result.max_constraint_error, (sphere[features[i]] - result.targets[i]).norm());
   return result;
 }
 
