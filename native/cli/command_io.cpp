@@ -5,9 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "arguments.h"
 #include "consistent_maps/errors.h"
-#include "json_writer.h"
 
 namespace cmaps::cli {
 
@@ -52,6 +50,21 @@ void write_text(const std::string& path, const std::string& text) {
   std::ofstream file(path, std::ios::binary);
   file << text << '\n';
   if (!file) throw cmaps::IoError("cannot write '" + path + "'");
+}
+
+cmaps::SphereOptions sphere_options(const Arguments& args) {
+  cmaps::SphereOptions options;
+  options.seed = args.seed;
+  options.effort = args.effort;
+  options.threads = args.threads;
+  return options;
+}
+
+void add_settings(JsonObject& json, const Arguments& args) {
+  json.add("seed", static_cast<unsigned long long>(args.seed))
+      .add("effort", args.effort)
+      .add("threads", args.threads)
+      .add("output", args.output);
 }
 
 }  // namespace cmaps::cli

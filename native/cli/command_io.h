@@ -2,10 +2,15 @@
 // output paths checked before a long run, text files written whole.
 #pragma once
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <string>
 
+#include "arguments.h"
 #include "consistent_maps/progress.h"
+#include "consistent_maps/spherical_parameterization.h"
+#include "json_writer.h"
 
 namespace cmaps::cli {
 
@@ -28,10 +33,17 @@ void check_output_directory(const std::string& dir);
 // Writes `text` and a final newline to `path`, or throws IoError.
 void write_text(const std::string& path, const std::string& text);
 
-// Runs `compute(progress)` with progress on an interactive terminal, and
-// clears the progress line however it ends.
+// The options every computation takes from the command line: seed, effort, threads.
+cmaps::SphereOptions sphere_options(const Arguments& args);
+
+// Appends the run's settings (seed, effort, threads, output) to a command's --json.
+void add_settings(JsonObject& json, const Arguments& args);
+
+// Runs `compute(progress)` with progress on an interactive terminal (and
+// without --json), and clears the progress line however it ends.
 template <class Compute>
-auto with_terminal_progress(bool show, Compute&& compute) {
+auto with_terminal_progress(const Arguments& args, Compute&& compute) {
+  const bool show = !args.json && isatty(STDERR_FILENO);
   try {
     auto result = compute(terminal_progress(show));
     if (show) std::fputs("\r\033[K", stderr);

@@ -1,7 +1,5 @@
 // `cmaps consistent`: the consistent spherical parameterization of a set, with
 // its remeshes and geometry images.
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -105,15 +103,13 @@ void run_consistent(const Arguments& args, Outcome& out) {
   out.json.add("features", int(set.names.size()));
 
   cmaps::ConsistentOptions options;
-  options.sphere.seed = args.seed;
-  options.sphere.effort = args.effort;
-  options.sphere.threads = args.threads;
+  options.sphere = sphere_options(args);
   options.first = args.first;
   options.grid = args.grid;
   options.restarts = args.restarts;
   options.align = args.align;
   const cmaps::ConsistentResult result =
-      with_terminal_progress(!args.json && isatty(STDERR_FILENO), [&](const cmaps::ProgressCallback& progress) {
+      with_terminal_progress(args, [&](const cmaps::ProgressCallback& progress) {
         return cmaps::consistent_spherical_parameterization(members, options, progress);
       });
   if (result.members.size() != members.size() || result.feature_locations.size() != set.names.size())
@@ -198,11 +194,8 @@ void run_consistent(const Arguments& args, Outcome& out) {
       .add("align", args.align)
       .add("restart", result.restart)
       .add_json("restart_suitability", JsonObject::array(result.restart_suitability))
-      .add("seconds_compute", result.seconds)
-      .add("seed", static_cast<unsigned long long>(args.seed))
-      .add("effort", args.effort)
-      .add("threads", args.threads)
-      .add("output", args.output);
+      .add("seconds_compute", result.seconds);
+  add_settings(out.json, args);
 
   const auto [lo, hi] = std::minmax_element(efficiency.begin(), efficiency.end());
   int flips = 0, added = 0;

@@ -1,7 +1,5 @@
 // `cmaps constrained`: a spherical parameterization with feature vertices on
 // given (or automatic) points.
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <map>
@@ -84,12 +82,9 @@ void run_constrained(const Arguments& args, Outcome& out) {
   const Constraints constraints = read_constraints(args, n);
   out.json.add("features", int(constraints.vertices.size()));
 
-  cmaps::SphereOptions options;
-  options.seed = args.seed;
-  options.effort = args.effort;
-  options.threads = args.threads;
+  const cmaps::SphereOptions options = sphere_options(args);
   const cmaps::ConstrainedResult result =
-      with_terminal_progress(!args.json && isatty(STDERR_FILENO), [&](const cmaps::ProgressCallback& progress) {
+      with_terminal_progress(args, [&](const cmaps::ProgressCallback& progress) {
         return cmaps::constrained_spherical_parameterization(mesh, constraints.vertices, constraints.targets, options,
                                                              progress);
       });
@@ -143,11 +138,8 @@ void run_constrained(const Arguments& args, Outcome& out) {
       .add("linf_stretch", r.linf_stretch)
       .add("spherical_area_sum", r.spherical_area_sum)
       .add("surface_area", r.surface_area)
-      .add("automatic_targets", constraints.targets.empty())
-      .add("seed", static_cast<unsigned long long>(args.seed))
-      .add("effort", args.effort)
-      .add("threads", args.threads)
-      .add("output", args.output);
+      .add("automatic_targets", constraints.targets.empty());
+  add_settings(out.json, args);
   if (args.refined_mesh.empty()) out.json.null("refined_mesh");
   else out.json.add("refined_mesh", args.refined_mesh);
 

@@ -1,7 +1,5 @@
 // `cmaps intersurface`: the inter-surface map of two meshes of the same genus,
 // written as surface points both ways and as each mesh mapped onto the other.
-#include <unistd.h>
-
 #include <cstdio>
 #include <filesystem>
 
@@ -9,7 +7,7 @@
 #include "commands.h"
 #include "consistent_maps/errors.h"
 #include "consistent_maps/mesh_io.h"
-#include "intersurface_inputs.h"
+#include "intersurface_common.h"
 
 namespace cmaps::cli {
 
@@ -42,7 +40,7 @@ void run_intersurface(const Arguments& args, Outcome& out) {
 
   const cmaps::IntersurfaceOptions options = intersurface_options(args);
   const cmaps::IntersurfaceResult result =
-      with_terminal_progress(!args.json && isatty(STDERR_FILENO), [&](const cmaps::ProgressCallback& progress) {
+      with_terminal_progress(args, [&](const cmaps::ProgressCallback& progress) {
         return cmaps::intersurface_map(a, b, features, options, progress);
       });
   if (result.a_to_b.size() != a.vertices.size() || result.b_to_a.size() != b.vertices.size())
@@ -62,16 +60,8 @@ void run_intersurface(const Arguments& args, Outcome& out) {
   cmaps::write_mesh(outputs[2], cmaps::TriangleMesh{result.a_on_b, a.triangles});
   cmaps::write_mesh(outputs[3], cmaps::TriangleMesh{result.b_on_a, b.triangles});
 
+  report_map(result, features.size(), false, out);
   const cmaps::MapDistortion &ab = result.distortion_a_to_b, &ba = result.distortion_b_to_a;
-  out.dirichlet = JsonObject::array(std::vector<double>{ab.symmetric_dirichlet, ba.symmetric_dirichlet});
-  out.flips = JsonObject::array(std::vector<int>{ab.flipped, ba.flipped});
-  out.efficiencies = JsonObject::array(std::vector<double>{result.efficiency_a, result.efficiency_b});
-  out.steiner_per_mesh = JsonObject::array(std::vector<int>{result.steiner_a, result.steiner_b});
-  std::string added = "[";
-  for (std::size_t k = features.size(); k < result.features.size(); ++k)
-    added += std::string(k > features.size() ? ", " : "") + JsonObject::array(std::vector<int>{
-                                                                 result.features[k].a, result.features[k].b});
-  out.added_features = added + "]";
   out.outputs = JsonObject::array(outputs);
   const auto computed = [](double median) { return median < 0 ? std::nullopt : std::optional<double>(median); };
   out.json.add("genus", result.genus)
@@ -101,11 +91,8 @@ void run_intersurface(const Arguments& args, Outcome& out) {
       .add("seconds_optimize", result.seconds_optimize)
       .add("seconds_locate", result.seconds_locate)
       .add("seconds_measure", result.seconds_measure)
-      .add("seconds_compute", result.seconds)
-      .add("seed", static_cast<unsigned long long>(args.seed))
-      .add("effort", args.effort)
-      .add("threads", args.threads)
-      .add("output", args.output);
+      .add("seconds_compute", result.seconds);
+  add_settings(out.json, args);
 
   char line[320];
   std::snprintf(line, sizeof line,

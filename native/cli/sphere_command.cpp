@@ -1,6 +1,4 @@
 // `cmaps sphere`: the stretch-minimizing spherical parameterization of one mesh.
-#include <unistd.h>
-
 #include <cstdio>
 
 #include "command_io.h"
@@ -18,12 +16,9 @@ void run_sphere(const Arguments& args, Outcome& out) {
   out.faces = int(mesh.triangles.size());
   out.json.add("vertices", int(mesh.vertices.size()));
 
-  cmaps::SphereOptions options;
-  options.seed = args.seed;
-  options.effort = args.effort;
-  options.threads = args.threads;
+  const cmaps::SphereOptions options = sphere_options(args);
   const cmaps::SphereResult result =
-      with_terminal_progress(!args.json && isatty(STDERR_FILENO), [&](const cmaps::ProgressCallback& progress) {
+      with_terminal_progress(args, [&](const cmaps::ProgressCallback& progress) {
         return cmaps::spherical_parameterization(mesh, options, progress);
       });
 
@@ -43,11 +38,8 @@ void run_sphere(const Arguments& args, Outcome& out) {
       .add("surface_area", r.surface_area)
       .add("bijective", r.bijective())
       .add("seconds_simplify", result.seconds_simplify)
-      .add("seconds_optimize", result.seconds_optimize)
-      .add("seed", static_cast<unsigned long long>(args.seed))
-      .add("effort", args.effort)
-      .add("threads", args.threads)
-      .add("output", args.output);
+      .add("seconds_optimize", result.seconds_optimize);
+  add_settings(out.json, args);
 
   mesh.vertices = std::move(result.sphere);
   cmaps::write_mesh(args.output, mesh);

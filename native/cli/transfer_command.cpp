@@ -1,7 +1,5 @@
 // `cmaps transfer`: colours, texture coordinates or the shape of SOURCE carried
 // onto TARGET through their inter-surface map.
-#include <unistd.h>
-
 #include <cstdio>
 #include <utility>
 
@@ -11,7 +9,7 @@
 #include "consistent_maps/errors.h"
 #include "consistent_maps/mesh_io.h"
 #include "consistent_maps/obj_attributes.h"
-#include "intersurface_inputs.h"
+#include "intersurface_common.h"
 
 namespace cmaps::cli {
 
@@ -40,7 +38,7 @@ void run_transfer(const Arguments& args, Outcome& out) {
   cmaps::IntersurfaceOptions options = intersurface_options(args);
   options.corner_images = uvs;
   const cmaps::IntersurfaceResult map =
-      with_terminal_progress(!args.json && isatty(STDERR_FILENO), [&](const cmaps::ProgressCallback& progress) {
+      with_terminal_progress(args, [&](const cmaps::ProgressCallback& progress) {
         try {
           return cmaps::intersurface_map(target, source, features, options, progress);
         } catch (const cmaps::InvalidInput& e) {  // the library calls the meshes A and B
@@ -57,24 +55,13 @@ void run_transfer(const Arguments& args, Outcome& out) {
   if (uvs) transferred.push_back("uvs");
   if (args.positions) transferred.push_back("positions");
   out.transferred = JsonObject::array(transferred);
-  const cmaps::MapDistortion &ts = map.distortion_a_to_b, &st = map.distortion_b_to_a;
-  out.dirichlet = JsonObject::array(std::vector<double>{st.symmetric_dirichlet, ts.symmetric_dirichlet});
-  out.flips = JsonObject::array(std::vector<int>{st.flipped, ts.flipped});
-  out.efficiencies = JsonObject::array(std::vector<double>{map.efficiency_b, map.efficiency_a});
-  out.steiner_per_mesh = JsonObject::array(std::vector<int>{map.steiner_b, map.steiner_a});
-  std::string added = "[";
-  for (std::size_t k = features.size(); k < map.features.size(); ++k)
-    added += std::string(k > features.size() ? ", " : "") +
-             JsonObject::array(std::vector<int>{map.features[k].b, map.features[k].a});
-  out.added_features = added + "]";
+  report_map(map, features.size(), true, out);
+  const cmaps::MapDistortion& ts = map.distortion_a_to_b;
   out.outputs = JsonObject::array(std::vector<std::string>{args.output});
   out.json.add("genus", map.genus)
       .add("method", cmaps::method_name(map.method))
-      .add("seconds_compute", map.seconds)
-      .add("seed", static_cast<unsigned long long>(args.seed))
-      .add("effort", args.effort)
-      .add("threads", args.threads)
-      .add("output", args.output);
+      .add("seconds_compute", map.seconds);
+  add_settings(out.json, args);
 
   std::string what;
   for (const std::string& name : transferred) what += (what.empty() ? "" : ", ") + name;

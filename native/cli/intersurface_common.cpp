@@ -1,4 +1,4 @@
-#include "intersurface_inputs.h"
+#include "intersurface_common.h"
 
 #include <map>
 #include <string>
@@ -6,6 +6,7 @@
 #include "command_io.h"
 #include "consistent_maps/errors.h"
 #include "json_reader.h"
+#include "json_writer.h"
 
 namespace cmaps::cli {
 
@@ -37,9 +38,7 @@ std::vector<cmaps::FeaturePair> read_feature_pairs(const Arguments& args, const 
 
 cmaps::IntersurfaceOptions intersurface_options(const Arguments& args) {
   cmaps::IntersurfaceOptions options;
-  options.sphere.seed = args.seed;
-  options.sphere.effort = args.effort;
-  options.sphere.threads = args.threads;
+  options.sphere = sphere_options(args);
   options.optimize_rounds = args.optimize;
   if (args.optimize == 0) options.correspondence_weight = 0;  // the plain composition
   options.cross_sweeps = args.cross_sweeps;
@@ -47,6 +46,21 @@ cmaps::IntersurfaceOptions intersurface_options(const Arguments& args) {
   options.starts = args.starts;
   options.method = args.method.value_or(cmaps::IntersurfaceMethod::automatic);
   return options;
+}
+
+void report_map(const cmaps::IntersurfaceResult& map, std::size_t given, bool swapped, Outcome& out) {
+  const auto ordered = [swapped](auto first, auto second) {
+    return swapped ? std::vector<decltype(first)>{second, first} : std::vector<decltype(first)>{first, second};
+  };
+  const cmaps::MapDistortion &forward = map.distortion_a_to_b, &backward = map.distortion_b_to_a;
+  out.dirichlet = JsonObject::array(ordered(forward.symmetric_dirichlet, backward.symmetric_dirichlet));
+  out.flips = JsonObject::array(ordered(forward.flipped, backward.flipped));
+  out.efficiencies = JsonObject::array(ordered(map.efficiency_a, map.efficiency_b));
+  out.steiner_per_mesh = JsonObject::array(ordered(map.steiner_a, map.steiner_b));
+  std::string added = "[";
+  for (std::size_t k = given; k < map.features.size(); ++k)
+    added += std::string(k > given ? ", " : "") + JsonObject::array(ordered(map.features[k].a, map.features[k].b));
+  out.added_features = added + "]";
 }
 
 }  // namespace cmaps::cli
