@@ -289,6 +289,21 @@ def test_transfer_between_genus_one_meshes_keeps_the_seams(cmaps_binary, native,
     assert u_error < 0.03 and v_error < 0.12 and spanning == 0, (u_error, v_error, spanning)
 
 
+def test_transfer_reports_the_map_with_source_first(cmaps_binary, tmp_path):
+    """transfer maps TARGET onto SOURCE but reports as [SOURCE, TARGET]: the same map as `intersurface TARGET
+    SOURCE` with every per-direction and per-mesh key the other way round, every added pair [source, target]."""
+    penguin = SHARED / "genus0" / "penguin.obj"
+    report = transfer(cmaps_binary, SPOT_LOW, penguin, tmp_path / "out.obj", "--positions", "--effort", "0")
+    result = run(cmaps_binary, "intersurface", penguin, SPOT_LOW, "-o", tmp_path / "map", "--effort", "0", "--json")
+    assert result.returncode == 0, result.stderr
+    direct = json.loads(result.stdout)
+    assert report["method"] == direct["method"] and report["faces"] == [1654, 6720]
+    for key in ("faces", "symmetric_dirichlet", "flipped", "stretch_efficiency", "steiner"):
+        assert report[key] == direct[key][::-1], key
+    assert report["added_features"] == [pair[::-1] for pair in direct["added_features"]]
+    assert report["added_features"] and all(s < 1654 for s, _ in report["added_features"])
+
+
 def test_transfer_without_positions_keeps_the_targets_shape(cmaps_binary, cactus_source, tmp_path, native):
     source, features, *_ = cactus_source
     out = tmp_path / "pose1.obj"
