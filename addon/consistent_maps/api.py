@@ -206,9 +206,10 @@ def _run_pair(tasks, names, **options):
         raise ComputeError(re.sub(r"\b([AB])\b(?=:| has| \()", lambda m: f"'{tasks['AB'.index(m.group(1))].name}'",
                                   str(e))) from e
     # The median says how distorted most of the surface is; a few near-degenerate triangles rule the mean.
+    # Folded samples are the vertex sampling's; the map's own folds (map_flipped) say whether it is bijective.
     stats = [{"genus": r["genus"], "method": r["method"], "symmetric_dirichlet": float(d),
               "median_symmetric_dirichlet": float(m), "folded_samples": int(f), "seconds": r["seconds"],
-              "bijective": True}
+              "bijective": r["map_flipped"] == 0}
              for d, m, f in zip(r["symmetric_dirichlet"], r["median_symmetric_dirichlet"], r["flipped"])]
     pair_maps = []
     for task, (this, other) in zip(tasks, ("ab", "ba")):

@@ -72,6 +72,7 @@ void run_intersurface(const Arguments& args, Outcome& out) {
       .add_json("median_symmetric_dirichlet", JsonObject::array(std::vector<double>{
                                                   ab.median_symmetric_dirichlet, ba.median_symmetric_dirichlet}))
       .add("sphere_flipped", result.sphere_flipped)
+      .add("map_flipped", result.map_flipped)
       .add_json("refitted", std::string(result.refitted_a ? "[true, " : "[false, ") +
                                 (result.refitted_b ? "true]" : "false]"))
       .add("balanced_patches", result.balanced_patches)

@@ -108,6 +108,7 @@ py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, co
   d["flipped"] = py::make_tuple(ab.flipped, ba.flipped);
   d["degenerate"] = py::make_tuple(ab.degenerate, ba.degenerate);
   d["sphere_flipped"] = result.sphere_flipped;
+  d["map_flipped"] = result.map_flipped;
   d["refitted"] = py::make_tuple(result.refitted_a, result.refitted_b);
   d["balanced_patches"] = result.balanced_patches;
   d["patch_area_ratio"] = result.patch_area_ratio;
@@ -182,6 +183,9 @@ void bind_intersurface(py::module_& m) {
         "distorted, as for method), 'patch_area_ratio': the largest ratio of a patch's "
         "shares of A's and B's area in the partition used;\n"
         "'sphere_flipped', 'stretch_efficiency' and 'steiner' of the two spherical maps (genus 0);\n"
+        "'map_flipped': the map's own folds, 0 when it is bijective as computed ('flipped' counts those of the\n"
+        "vertex sampling): through the sphere 'sphere_flipped', directly the triangles of A and of B turned\n"
+        "over in their patches' embeddings and B's vertices outside the triangle of A said to hold them;\n"
         "'seconds' and per stage. Raises InvalidMeshError for different genus,\n"
         "non-manifold meshes or bad pairs, Cancelled when progress returns False.");
 }

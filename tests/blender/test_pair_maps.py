@@ -42,6 +42,7 @@ def test_pair_of_genus_one_is_computed_and_morphs_onto_the_partner():
     stats = dict(a.data["cm_stats"])
     assert stats["genus"] == 1 and stats["symmetric_dirichlet"] >= 4 and stats["median_symmetric_dirichlet"] >= 4
     assert 0 <= stats["folded_samples"] < len(a.data.polygons) // 20  # bench, 16 true pairs: 24 of 4,608
+    assert stats["bijective"], "the map itself folds nowhere (map_flipped 0)"
     key = api.morph(a, b, align='none')
     shape = _get(key.data, "co", 3)
     truth = maps.positions(b.data)

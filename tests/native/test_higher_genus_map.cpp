@@ -239,6 +239,7 @@ TEST_P(HigherGenusMap, ValidExactAndInvertible) {
   EXPECT_LT(round_trip(b, a, r.b_to_a, r.a_on_b), kRoundTrip);
   EXPECT_TRUE(std::isfinite(r.distortion_a_to_b.symmetric_dirichlet));
   EXPECT_TRUE(std::isfinite(r.distortion_b_to_a.symmetric_dirichlet));
+  EXPECT_EQ(r.map_flipped, 0);  // the map itself folds nowhere, whatever its vertex sampling does
 }
 
 TEST_P(HigherGenusMap, ZeroFeaturesGetAValidMap) {
@@ -249,6 +250,7 @@ TEST_P(HigherGenusMap, ZeroFeaturesGetAValidMap) {
   expect_valid_points(r.b_to_a, a);
   expect_exact_features(r, a, b);
   EXPECT_LT(round_trip(a, b, r.a_to_b, r.b_on_a), kRoundTrip);
+  EXPECT_EQ(r.map_flipped, 0);
 }
 
 // With balanced patches the kitten - rocker arm map is far less distorted
@@ -431,6 +433,7 @@ TEST(HigherGenusMap, HolesMapOntoHolesAndRimsOntoRims) {
     for (int v : farthest_points(a, count)) pairs.push_back({v, new_index[v]});
     const IntersurfaceResult r = intersurface_map(a, b, pairs);
     EXPECT_EQ(r.genus, 1);
+    EXPECT_EQ(r.map_flipped, 0);
     expect_valid_points(r.a_to_b, b);
     expect_valid_points(r.b_to_a, a);
     expect_exact_features(r, a, b);

@@ -155,6 +155,7 @@ TEST(IntersurfaceMap, OptimizationLowersTheDistortionWithoutFolding) {
   EXPECT_LT(r.distortion_a_to_b.flipped + r.distortion_b_to_a.flipped,
             0.35 * (r.composition_a_to_b.flipped + r.composition_b_to_a.flipped));
   EXPECT_EQ(r.sphere_flipped, 0);  // both spherical maps are still embeddings: the map is a bijection
+  EXPECT_EQ(r.map_flipped, 0);
   EXPECT_GT(r.seconds_optimize, 0);
 }
 
@@ -273,6 +274,7 @@ TEST(IntersurfaceMap, CactusPosesMapDirectlyWithinOnePercent) {
   const TriangleMesh &a = m.a, &b = m.b;
   const IntersurfaceResult& r = m.map;
   EXPECT_EQ(r.method, IntersurfaceMethod::partition);
+  EXPECT_EQ(r.map_flipped, 0);
   EXPECT_LT(r.partition_median_dirichlet, r.sphere_median_dirichlet);
   ASSERT_EQ(r.restart_median_dirichlet.size(), 1u);  // the sphere's, reported though not kept
   EXPECT_DOUBLE_EQ(r.restart_median_dirichlet[0], r.sphere_median_dirichlet);
@@ -319,6 +321,7 @@ TEST(IntersurfaceMap, PosesWithWallsMapDirectlyBelowTheSpheresMedianAndFolds) {
   const CactusMap m = map_cactus_poses(2, 0, 12, walls);
   const IntersurfaceResult& r = m.map;
   EXPECT_EQ(r.method, IntersurfaceMethod::partition);
+  EXPECT_EQ(r.map_flipped, 0);
   EXPECT_LT(r.partition_median_dirichlet, r.sphere_median_dirichlet);
   ASSERT_EQ(r.restart_flipped.size(), 1u);  // the sphere's map, not kept
   EXPECT_GT(r.restart_flipped[0], 100);
@@ -367,6 +370,7 @@ TEST(IntersurfaceMap, ZeroFeaturesGetAValidDirectMap) {
   const IntersurfaceResult r = intersurface_map(a, b, {}, options);
   EXPECT_EQ(r.method, IntersurfaceMethod::partition);
   EXPECT_LT(r.sphere_median_dirichlet, 0);  // not computed
+  EXPECT_EQ(r.map_flipped, 0);
   EXPECT_GE(r.added_features, 2);
   expect_valid_points(r.a_to_b, b);
   expect_valid_points(r.b_to_a, a);

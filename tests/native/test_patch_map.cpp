@@ -197,6 +197,27 @@ TEST(PatchMapOptimization, AreaMatchingNearsTheTruthAndKeepsEveryPatchEmbedded) 
   }
 }
 
+TEST(PatchParameterization, TurnedTrianglesAreCounted) {
+  // What IntersurfaceResult::map_flipped reports for B: 0 for the
+  // embeddings as computed, the triangles turned over once an interior
+  // vertex is pushed past a neighbour.
+  CactusPoses poses;
+  PartitionSide& side = poses.p.sides[1];
+  PatchParameterization uv = parameterize_patches(side, poses.p);
+  EXPECT_EQ(turned_in_patches(side, uv), 0);
+  std::vector<char> on_path(side.mesh.vertex_count(), 0);
+  for (const auto& path : side.paths)
+    for (int v : path) on_path[v] = 1;
+  std::unordered_map<int, Vec2>& patch = uv.uv[0];
+  const auto interior = std::find_if(patch.begin(), patch.end(), [&](const auto& x) { return !on_path[x.first]; });
+  ASSERT_NE(interior, patch.end());
+  const int v = interior->first, n = side.mesh.ring(v).front();
+  patch[v] = patch.at(n) + 2 * (patch.at(n) - patch.at(v));
+  const int turned = turned_in_patches(side, uv);
+  EXPECT_GE(turned, 1);
+  EXPECT_LE(turned, int(side.mesh.ring(v).size()));
+}
+
 TEST(CrossPatchMap, VerticesCrossPathsAndTheMapNearsTheTruth) {
   // The cactus poses' partition: its paths, traced on each pose alone, stop
   // being walls and the map moves toward the truth, staying bijective.

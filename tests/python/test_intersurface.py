@@ -93,7 +93,7 @@ def test_zero_features_get_a_valid_map(native):
     expect_valid(r["a_to_b_triangle"], r["a_to_b_barycentric"], b[1])
     expect_valid(r["b_to_a_triangle"], r["b_to_a_barycentric"], a[1])
     expect_exact(r, a, b)
-    assert r["sphere_flipped"] == 0
+    assert r["sphere_flipped"] == r["map_flipped"] == 0
     plain = native.intersurface_map(a, b, [], effort=0, optimize=0, method="sphere")
     assert plain["symmetric_dirichlet"] == plain["composition_dirichlet"] == r["composition_dirichlet"]
     assert all(d < c for d, c in zip(r["symmetric_dirichlet"], r["composition_dirichlet"]))
@@ -167,7 +167,7 @@ def test_faces_with_holes(native):
     # falls back on it where the sphere needs rings of features.
     direct = native.intersurface_map(a, b, [[v, v] for v in inner])
     assert direct["method"] == "partition" and direct["sphere_median_dirichlet"] is None
-    assert direct["added_features"] >= 6
+    assert direct["added_features"] >= 6 and direct["map_flipped"] == 0
     expect_holes_onto_holes(direct, a, b)
 
 
@@ -223,6 +223,7 @@ def test_genus_one_map(native):
     expect_valid(r["b_to_a_triangle"], r["b_to_a_barycentric"], a[1])
     expect_exact(r, a, b)
     assert r["seconds_partition"] > 0
+    assert r["map_flipped"] == 0, "the map itself folds nowhere, whatever its vertex sampling does"
     # The partition as traced (no balancing rounds) is the one reported unless balancing lowered the medians.
     plain = native.intersurface_map(a, b, [[0, 7]], balance_rounds=0)
     assert plain["balanced_patches"] is False and plain["patch_area_ratio"] >= 1
@@ -289,6 +290,7 @@ def test_genus_one_with_holes(native):
     expect_valid(r["b_to_a_triangle"], r["b_to_a_barycentric"], a[1])
     expect_valid_corners(r, a, b)
     expect_exact(r, a, b)
+    assert r["map_flipped"] == 0  # the holes' temporary fans are no part of the map
     for (source, target, side) in [(a, b, "a_to_b"), (b, a, "b_to_a")]:
         rim, other = rim_vertices(source[1]), rim_vertices(target[1])
         for v in rim:
@@ -442,7 +444,7 @@ def test_cli_genus_one(cmaps_binary, native, tmp_path):
     assert result.returncode == 0, result.stderr
     report = json.loads(result.stdout)
     assert report["error"] is None and report["genus"] == 1 and report["features"] == 2
-    assert report["base_triangles"] > 0 and report["seconds_partition"] > 0
+    assert report["base_triangles"] > 0 and report["seconds_partition"] > 0 and report["map_flipped"] == 0
     assert report["patch_area_ratio"] >= 1 and report["balanced_patches"] in (True, False)
     expect_written_maps(out, a, b)
     triangles, weights = read_points(out / "A_to_B.txt")

@@ -187,7 +187,7 @@ constexpr double kCornerNudge = 1e-3;
 // of the target triangles holding the three images; the target's normals
 // turned when one mesh, its holes closed, lists its triangles inwards and the
 // other outwards). Both are properties of
-// this vertex sampling: the map itself is bijective (see sphere_flipped).
+// this vertex sampling: the map itself is bijective (see map_flipped).
 // The mean is dominated by the few most distorted triangles (often
 // near-degenerate samples); `median_symmetric_dirichlet`, the median
 // triangle's energy (degenerate images counted as infinite), says how
@@ -231,6 +231,12 @@ struct IntersurfaceResult {
   // >= 1: the Steiner vertices of the partition and its patches' refinement.
   double efficiency_a = 0, efficiency_b = 0;
   int sphere_flipped = 0;
+  // The map's own folds, 0 when it is bijective as computed (unlike
+  // MapDistortion::flipped, which counts folds of the vertex sampling):
+  // through the sphere, sphere_flipped; directly, A's triangles turned over
+  // in their patches' canonical triangles, B's turned over in its patch
+  // embeddings, and B's vertices outside the triangle of A said to hold them.
+  int map_flipped = 0;
   // Genus 0: whether A's map, then B's, was kept refitted against the
   // other's (IntersurfaceOptions::correspondence_weight).
   bool refitted_a = false, refitted_b = false;

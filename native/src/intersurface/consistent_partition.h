@@ -42,6 +42,9 @@ struct PartitionSide {
   std::vector<int> feature_vertex;       // per base vertex: its mesh vertex
   std::vector<std::vector<int>> paths;   // per base edge: mesh vertices from its first base vertex to its second
   std::vector<int> patch;                // per mesh triangle: its base triangle
+
+  // Whether mesh triangle f fills a hole (a temporary fan), not the surface.
+  bool in_fan(int f) const { return mesh.input_triangle(f) >= input_triangles; }
 };
 
 // A base triangle: corners k = 0, 1, 2 (base vertices) and the base edge from

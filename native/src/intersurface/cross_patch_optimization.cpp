@@ -13,8 +13,6 @@ namespace {
 
 constexpr double kInside = 1e-9;  // a base vertex this far inside a ring triangle (weights) is inside
 
-bool is_fan(const PartitionSide& side, int f) { return side.mesh.input_triangle(f) >= side.input_triangles; }
-
 // The vertex of a refined point's triangle with the largest weight.
 int nearest_corner(const PartitionSide& side, const RefinedPoint& p) {
   const auto& w = p.weights;
@@ -42,7 +40,7 @@ std::vector<char> fan_patches(const ConsistentPartition& partition) {
   std::vector<char> fan(partition.triangles.size(), 0);
   const PartitionSide& a = partition.sides[0];
   for (int f = 0; f < int(a.patch.size()); ++f)
-    if (is_fan(a, f)) fan[a.patch[f]] = 1;
+    if (a.in_fan(f)) fan[a.patch[f]] = 1;
   return fan;
 }
 
@@ -61,9 +59,9 @@ CrossPatchMap::CrossPatchMap(const ConsistentPartition& partition, const PatchPa
   const std::vector<std::vector<int>> faces_a = faces_by_patch(a_, patches), faces_b = faces_by_patch(b_, patches);
 
   shape_a_.resize(a_.mesh.triangles().size());
-  for (int f = 0; f < int(shape_a_.size()); ++f) shape_a_[f] = is_fan(a_, f) ? SourceTriangle() : shape_of(a_, f);
+  for (int f = 0; f < int(shape_a_.size()); ++f) shape_a_[f] = a_.in_fan(f) ? SourceTriangle() : shape_of(a_, f);
   shape_b_.resize(b_.mesh.triangles().size());
-  for (int g = 0; g < int(shape_b_.size()); ++g) shape_b_[g] = is_fan(b_, g) ? SourceTriangle() : shape_of(b_, g);
+  for (int g = 0; g < int(shape_b_.size()); ++g) shape_b_[g] = b_.in_fan(g) ? SourceTriangle() : shape_of(b_, g);
   split_a_ = split_triangles(a_);
   split_b_ = split_triangles(b_);
 
@@ -73,10 +71,10 @@ CrossPatchMap::CrossPatchMap(const ConsistentPartition& partition, const PatchPa
   fixed_.assign(na, 0);
   for (int v = 0; v < na; ++v) {
     const std::vector<int>& faces = a_.mesh.faces_of(v);
-    const auto surface = std::find_if(faces.begin(), faces.end(), [&](int f) { return !is_fan(a_, f); });
+    const auto surface = std::find_if(faces.begin(), faces.end(), [&](int f) { return !a_.in_fan(f); });
     home_[v] = a_.patch[surface != faces.end() ? *surface : faces.front()];
     point_[v] = uv_a.uv[home_[v]].at(v);
-    if (surface == faces.end() || std::any_of(faces.begin(), faces.end(), [&](int f) { return is_fan(a_, f); }))
+    if (surface == faces.end() || std::any_of(faces.begin(), faces.end(), [&](int f) { return a_.in_fan(f); }))
       fixed_[v] = 1;
   }
   base_vertex_.assign(na, -1);
@@ -288,7 +286,7 @@ bool CrossPatchMap::improve(int v) {
   std::optional<Move> move;
   if (current.folded > 0) move = descent_step(x0, length, current, at, [](const Move& m) { return m.folded; });
   if (!move) move = descent_step(x0, length, current, at);
-  if (!move) return false;
+  if (!move || turns_ring(v, *move)) return false;
   apply(v, *move);
   return true;
 }
@@ -332,18 +330,32 @@ CrossPatchOptimization CrossPatchMap::optimize(int sweeps, const std::function<b
   return result;
 }
 
+bool CrossPatchMap::turned(int f) const {
+  std::array<Vec2, 3> c;
+  return develop_triangle(f, {1, 1, 1}, c) < 0 || orientation_ * twice_signed_area(c[0], c[1], c[2]) <= 0;
+}
+
 int CrossPatchMap::turned_triangles() const {
-  int turned = 0;
-  for (int f = 0; f < int(a_.mesh.triangles().size()); ++f) {
-    std::array<Vec2, 3> c;
-    turned += develop_triangle(f, {1, 1, 1}, c) < 0 || orientation_ * twice_signed_area(c[0], c[1], c[2]) <= 0;
-  }
-  return turned;
+  int count = 0;
+  for (int f = 0; f < int(a_.mesh.triangles().size()); ++f) count += !a_.in_fan(f) && turned(f);
+  return count;
+}
+
+bool CrossPatchMap::turns_ring(int v, const Move& move) {
+  const int home = home_[v];
+  const Vec2 point = point_[v];
+  home_[v] = move.home, point_[v] = move.point;
+  const std::vector<int>& faces = a_.mesh.faces_of(v);
+  const bool any = std::any_of(faces.begin(), faces.end(), [&](int f) { return !a_.in_fan(f) && turned(f); });
+  home_[v] = home, point_[v] = point;
+  return any;
 }
 
 int CrossPatchMap::stray_hosts() const {
   int stray = 0;
   for (int w = 0; w < b_.mesh.vertex_count(); ++w) {
+    const std::vector<int>& faces = b_.mesh.faces_of(w);
+    if (std::all_of(faces.begin(), faces.end(), [&](int g) { return b_.in_fan(g); })) continue;
     std::array<Vec2, 3> c;
     const int plane = develop_triangle(host_[w].face, {1, 1, 1}, c);
     Vec2 at;

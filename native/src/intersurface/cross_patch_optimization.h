@@ -52,7 +52,8 @@ class CrossPatchMap {
   // The invariants, counted (both 0 unless broken): A's triangles that turn
   // the wrong way in the plane of their first corner's base triangle, and
   // B's vertices that lie outside the triangle of A said to hold them (by
-  // more than 1e-9 in barycentric weight).
+  // more than 1e-9 in barycentric weight). Holes' fans are left out (their
+  // triangles, the centres of B's): they are no part of the surfaces.
   int turned_triangles() const;
   int stray_hosts() const;
 
@@ -72,6 +73,13 @@ class CrossPatchMap {
   struct Ring;
   double total_energy() const;
   bool improve(int v);
+  // Whether A's triangle f turns the wrong way in the plane of its first
+  // corner's base triangle (turned_triangles counts them).
+  bool turned(int f) const;
+  // Whether a triangle around v would turn so with v moved as `move`. A
+  // move's ring is checked in v's own plane; a triangle at a base vertex
+  // (a cone point of the base mesh) can turn in its other corners' planes.
+  bool turns_ring(int v, const Move& move);
   bool gather_ring(int v, Ring& ring) const;
   // A's vertex u in base triangle t's plane, the copy nearest `near`.
   bool develop(int u, int t, const Vec2& near, Vec2& result) const;

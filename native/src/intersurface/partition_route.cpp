@@ -101,6 +101,8 @@ void map_partition(ConsistentPartition& partition, const ClosedMesh& closed_a, c
   result.seconds_locate = seconds_since(stage);
 
   stage = Clock::now();
+  result.map_flipped =
+      across.turned_triangles() + turned_in_patches(partition.sides[1], uv_b) + across.stray_hosts();
   result.distortion_a_to_b = result.composition_a_to_b = measure_intersurface_map(a, b, result.a_to_b);
   result.distortion_b_to_a = result.composition_b_to_a = measure_intersurface_map(b, a, result.b_to_a);
   result.seconds_measure = seconds_since(stage);

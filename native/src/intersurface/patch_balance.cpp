@@ -29,7 +29,7 @@ constexpr double kShortestPart = 0.2;  // a path goes all, half or a quarter of 
 
 double triangle_area(const PartitionSide& side, int f) {
   const Triangle& t = side.mesh.triangles()[f];
-  if (side.mesh.input_triangle(f) >= side.input_triangles) return 0;  // a hole's temporary fan
+  if (side.in_fan(f)) return 0;
   const Vec3 &a = side.mesh.position(t[0]), &b = side.mesh.position(t[1]), &c = side.mesh.position(t[2]);
   return 0.5 * (b - a).cross(c - a).norm();
 }
@@ -299,7 +299,7 @@ PatchBalance balance_patch_areas(ConsistentPartition& partition, int rounds) {
   std::vector<char> in_hole(patches, 0);
   const PartitionSide& a = partition.sides[0];
   for (int f = 0; f < int(a.patch.size()); ++f)
-    if (a.mesh.input_triangle(f) >= a.input_triangles) in_hole[a.patch[f]] = 1;
+    if (a.in_fan(f)) in_hole[a.patch[f]] = 1;
   const auto shares_another_path = [&](int p, int q, int edge) {
     for (int e : partition.triangles[p].edges)
       if (e != edge && (beside[e][0] == q || beside[e][1] == q)) return true;

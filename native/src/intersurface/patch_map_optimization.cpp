@@ -44,8 +44,7 @@ class PatchEnergy {
       const Triangle& t = source.mesh.triangles()[f];
       face_.push_back(f);
       triangle_.push_back({local_.at(t[0]), local_.at(t[1]), local_.at(t[2])});
-      shape_.push_back(source.mesh.input_triangle(f) < source.input_triangles ? shape_of(source, f)
-                                                                              : SourceTriangle());
+      shape_.push_back(source.in_fan(f) ? SourceTriangle() : shape_of(source, f));
       for (int k = 0; k < 3; ++k) ring_[triangle_.back()[k]].push_back(int(triangle_.size()) - 1);
     }
     std::unordered_map<int, int> local_face;
@@ -61,8 +60,7 @@ class PatchEnergy {
     for (int g : target_faces) {
       const Triangle& t = target.mesh.triangles()[g];
       back_triangle_.push_back({target_local.at(t[0]), target_local.at(t[1]), target_local.at(t[2])});
-      back_shape_.push_back(target.mesh.input_triangle(g) < target.input_triangles ? shape_of(target, g)
-                                                                                   : SourceTriangle());
+      back_shape_.push_back(target.in_fan(g) ? SourceTriangle() : shape_of(target, g));
       for (int w : back_triangle_.back()) {
         target_ring_[w].push_back(int(back_triangle_.size()) - 1);
         if (seen[w]) continue;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "common/parallel_for.h"
+#include "intersurface/chord_energy.h"
 #include "consistent_maps/intersurface_map.h"
 #include "intersurface/patch_embedding.h"
 #include "intersurface/patch_locator.h"
@@ -149,6 +150,23 @@ std::vector<std::vector<int>> faces_by_patch(const PartitionSide& side, int patc
   std::vector<std::vector<int>> faces(patches);
   for (int f = 0; f < int(side.patch.size()); ++f) faces[side.patch[f]].push_back(f);
   return faces;
+}
+
+int turned_in_patches(const PartitionSide& side, const PatchParameterization& uv) {
+  int turned = 0;
+  const std::vector<std::vector<int>> faces = faces_by_patch(side, int(uv.uv.size()));
+  for (std::size_t t = 0; t < faces.size(); ++t) {
+    std::vector<double> area;
+    double total = 0;
+    for (int f : faces[t]) {
+      if (side.in_fan(f)) continue;
+      const Triangle& c = side.mesh.triangles()[f];
+      area.push_back(twice_signed_area(uv.uv[t].at(c[0]), uv.uv[t].at(c[1]), uv.uv[t].at(c[2])));
+      total += area.back();
+    }
+    for (double a : area) turned += !(a * total > 0);
+  }
+  return turned;
 }
 
 std::vector<InputLocation> locate_canonical(const PartitionSide& target, const PatchParameterization& target_uv,

@@ -61,6 +61,11 @@ void snap_features(const PartitionSide& source, const PartitionSide& target, con
 // Per base triangle: the side's triangles in it.
 std::vector<std::vector<int>> faces_by_patch(const PartitionSide& side, int patches);
 
+// The side's triangles turned over in their patch's embedding: facing against
+// the patch's own orientation (the sign of its summed area) or of zero area.
+// 0 when every patch is embedded bijectively. Holes' fans are left out.
+int turned_in_patches(const PartitionSide& side, const PatchParameterization& uv);
+
 // A point of a side's refined mesh (triangle, weights) on its input triangle.
 InputLocation to_input(const PartitionSide& side, const TriangleMesh& input, int face, const std::array<double, 3>& w);
 
