@@ -190,7 +190,6 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
     map_through_sphere_restarts(a, b, features, result, options, part);
     result.method = IntersurfaceMethod::sphere;
     result.sphere_median_dirichlet = summed_median(result);
-    result.map_flipped = result.sphere_flipped;
   };
   if (options.method == IntersurfaceMethod::sphere) {
     through_sphere(progress);

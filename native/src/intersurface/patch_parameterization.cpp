@@ -6,8 +6,8 @@
 #include <string>
 
 #include "common/parallel_for.h"
-#include "intersurface/chord_energy.h"
 #include "consistent_maps/intersurface_map.h"
+#include "intersurface/chord_energy.h"
 #include "intersurface/patch_embedding.h"
 #include "intersurface/patch_locator.h"
 

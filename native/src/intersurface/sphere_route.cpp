@@ -231,6 +231,7 @@ void map_through_sphere_pair(const TriangleMesh& a, const TriangleMesh& b, const
     efficiency = report.efficiency;
     result.sphere_flipped += report.flipped;
   }
+  result.map_flipped = result.sphere_flipped;  // through the sphere, the map folds where a spherical map does
 
   stage = Clock::now();
   if (progress && !progress(0.95, "locating vertices on the other mesh")) throw Cancelled();
