@@ -3,23 +3,36 @@
 The same name on two objects means "these points correspond". A group with no
 vertex is a feature still to be placed (what "copy names" creates); a group with
 several vertices is invalid. Works in Object Mode and in Edit Mode (through
-bmesh), reading group memberships once per change: `invalidate()` is called by
-the add-on's depsgraph handler and by every function here that edits groups.
+bmesh). While the add-on is registered, group memberships are read once per
+change (the panels redraw often): `invalidate()` is called by the add-on's
+depsgraph, load and undo handlers and by every function here that edits groups.
+Without those handlers (the api used from a script, the add-on not registered)
+nothing would say when a cache went stale, so every call reads the groups.
 """
 import re
 
 PREFIX = "CM:"
 MIN_SHARED = 3
 
-_memberships_cache = {}
+# {(object, mesh, mode, group names): memberships} while registered (use_cache), else None. Freed
+# objects' addresses are reused: the group names keep a new object from taking an old one's entry
+# before the next handler call.
+_memberships_cache = None
 
 
 class FeatureError(ValueError):
     """A feature operation cannot be done; the message says why."""
 
 
+def use_cache(enabled):
+    """Caches memberships (enabled by register(), whose handlers invalidate them) or reads them each time."""
+    global _memberships_cache
+    _memberships_cache = {} if enabled else None
+
+
 def invalidate():
-    _memberships_cache.clear()
+    if _memberships_cache is not None:
+        _memberships_cache.clear()
 
 
 def group_name(name):
@@ -62,7 +75,9 @@ def _read_memberships(obj):
 
 def memberships(obj):
     """{feature name: [vertex indices]} for every CM: group of obj, valid or not."""
-    key = (obj.as_pointer(), obj.data.as_pointer(), obj.mode)
+    if _memberships_cache is None:
+        return _read_memberships(obj)
+    key = (obj.as_pointer(), obj.data.as_pointer(), obj.mode, tuple(g.name for g in obj.vertex_groups))
     if key not in _memberships_cache:
         _memberships_cache[key] = _read_memberships(obj)
     return _memberships_cache[key]

@@ -42,6 +42,7 @@ def register():
     properties.attach()
     for handlers in HANDLERS:
         handlers.append(_forget_cached_features)
+    features.use_cache(True)
     bpy.app.handlers.load_pre.append(_drop_running_job)
     overlay.install()
 
@@ -57,4 +58,4 @@ def unregister():
     properties.detach()
     for cls in reversed(CLASSES):
         bpy.utils.unregister_class(cls)
-    features.invalidate()
+    features.use_cache(False)

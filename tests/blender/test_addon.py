@@ -280,6 +280,26 @@ def test_feature_api():
     assert api.delete_feature([a, b], "chin") == 2 and "chin" not in features.memberships(b)
 
 
+def test_features_read_fresh_where_no_handler_keeps_a_cache_fresh():
+    """The add-on's handlers keep its feature cache fresh only while it is registered: a script using the api
+    without registering (examples/blender_example.py) edits groups and loads files with nothing to invalidate
+    it, so it reads the groups each time; registered, a new object at a freed one's address must not take its
+    features before the next handler call (the group names are part of the key)."""
+    a = load(BALL, "A")
+    api.add_feature(a, "nose", 5)
+    assert api.features(a) == {"nose": 5}
+    a.vertex_groups.clear()  # no handler has run since
+    assert api.features(a) == {}
+    consistent_maps.unregister()
+    try:
+        api.add_feature(a, "nose", 5)
+        a.vertex_groups["CM:nose"].remove([5])
+        a.vertex_groups["CM:nose"].add([6], 1.0, 'REPLACE')
+        assert api.features(a) == {"nose": 6}
+    finally:
+        consistent_maps.register()
+
+
 def test_feature_problems_are_plain():
     a, b = load(BALL, "A"), load(BALL, "B")
     with_features(a)
