@@ -2,15 +2,22 @@
 
     blender -b --factory-startup --python-exit-code 1 -P examples/blender_example.py -- OUTDIR
 
-Loads two shipped meshes, places the features of a features file (name -> [vertex per mesh]) as
-CM: vertex groups, computes their consistent parameterization, morphs the first into the second
-(shape key, animated 0 -> 1 -> 0 over frames 1-24), gives the first a UV map (Smart UV Project)
-and a generated colour-grid texture and bakes that texture and the first's normals (a tangent-space
-normal map) into the second's own UV layout. Writes OUTDIR/example.blend, OUTDIR/morph_contact_sheet.png
-(the 24 frames, left to right, top to bottom), OUTDIR/texture_transfer.png (source and target side by
-side) and OUTDIR/normal_transfer.png (Cycles, grey: the source, the target with its own normals, the
-target with the source's baked normals). Uses consistent_maps.api from addon/ (the native module is
-built there by scripts/setup.sh); nothing is installed.
+Part 1, genus 0 through the sphere: loads Spot and the penguin, places the features of a features file
+(name -> [vertex per mesh]) as CM: vertex groups, computes their consistent parameterization, morphs
+the first into the second (shape key, animated 0 -> 1 -> 0 over frames 1-24), gives the first a UV map
+(Smart UV Project) and a generated colour-grid texture and bakes that texture and the first's normals (a
+tangent-space normal map) into the second's own UV layout. Writes OUTDIR/example.blend,
+OUTDIR/morph_contact_sheet.png (the 24 frames, left to right, top to bottom), OUTDIR/texture_transfer.png
+(source and target side by side) and OUTDIR/normal_transfer.png (Cycles, grey: the source, the target
+with its own normals, the target with the source's baked normals).
+
+Part 2, genus 1 without the sphere: the kitten and the torus, no features, mapped directly onto each
+other (the inter-surface map through a consistent partition); a colour attribute painted on the kitten
+is carried onto the torus and the kitten morphs into the torus. Writes OUTDIR/kitten_torus.blend,
+OUTDIR/pair_morph_contact_sheet.png and OUTDIR/colour_transfer.png.
+
+Uses consistent_maps.api from addon/ (the native module is built there by scripts/setup.sh); nothing is
+installed.
 """
 import json
 import math
@@ -20,6 +27,7 @@ from pathlib import Path
 
 import bpy
 import numpy as np
+from mathutils import Matrix
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "addon"))
@@ -27,6 +35,7 @@ from consistent_maps import _native, api  # noqa: E402
 
 MESHES = ROOT / "examples" / "meshes"
 SOURCE, TARGET = "spot", "penguin"
+PAIR_SOURCE, PAIR_TARGET = "kitten", "torus"  # genus 1: kitten.off, torus.obj
 FEATURES = ROOT / "examples" / "spot_penguin_features.json"  # name -> [vertex on SOURCE, vertex on TARGET]
 FRAMES, COLUMNS, CELL = 24, 6, 160
 TEXTURE_SIZE, BAKE_SIZE = 1024, 1024
@@ -44,14 +53,17 @@ def step(text, since):
     return time.perf_counter()
 
 
-def load(name, turn):
-    vertices, triangles = _native.read_mesh(str(MESHES / f"{name}.obj"))
+def load(file_name, turn, tilt=math.pi / 2):
+    """The mesh file as a new object named after it, turned by `tilt` about x and `turn` about z (the
+    files are y-up, Blender is z-up: a tilt of a quarter turn stands them up)."""
+    name = Path(file_name).stem
+    vertices, triangles = _native.read_mesh(str(MESHES / file_name))
     mesh = bpy.data.meshes.new(name)
     mesh.from_pydata(vertices.tolist(), [], triangles.tolist())
     mesh.update()
     obj = bpy.data.objects.new(name, mesh)
     bpy.context.scene.collection.objects.link(obj)
-    obj.rotation_euler = (math.pi / 2, 0, turn)  # the OBJ files are y-up, Blender is z-up; turn about z
+    obj.rotation_euler = (tilt, 0, turn)
     for polygon in mesh.polygons:
         polygon.use_smooth = True
     return obj
@@ -130,6 +142,19 @@ def camera_on(objects, aspect):
     scene.camera = camera
 
 
+def use_workbench(color_type):
+    """Renders the scene with Workbench (studio light, grey background), colouring by color_type."""
+    scene = bpy.context.scene
+    scene.render.engine = 'BLENDER_WORKBENCH'
+    scene.display.shading.light = 'STUDIO'
+    scene.display.shading.color_type = color_type
+    scene.render.image_settings.file_format = 'PNG'
+    scene.render.film_transparent = False
+    scene.view_settings.view_transform = 'Standard'
+    scene.world = scene.world or bpy.data.worlds.new("World")
+    scene.world.color = (0.6, 0.6, 0.6)
+
+
 def render(width, height):
     """Renders the scene (Workbench) and returns its pixels, (height, width, 4), rows top to bottom."""
     scene = bpy.context.scene
@@ -156,11 +181,36 @@ def save_png(pixels, path):
     bpy.data.images.remove(image)
 
 
+def render_morph(obj, path):
+    """Renders frames 1-FRAMES of obj's morph (what else renders stays in) into one contact sheet at path,
+    the camera framing both ends of the morph."""
+    scene = bpy.context.scene
+    morphed = []
+    for frame in (1, 1 + FRAMES // 2):
+        scene.frame_set(frame)
+        evaluated = obj.evaluated_get(bpy.context.evaluated_depsgraph_get())
+        mesh = evaluated.to_mesh()
+        morphed += [evaluated.matrix_world @ v.co for v in mesh.vertices]
+        evaluated.to_mesh_clear()
+    corners = np.array(morphed)
+    frame_box = bpy.data.objects.new("_bounds", bpy.data.meshes.new("_bounds"))
+    frame_box.data.from_pydata([tuple(corners.min(axis=0)), tuple(corners.max(axis=0))], [], [])
+    scene.collection.objects.link(frame_box)
+    camera_on([frame_box], 1.0)
+    bpy.data.objects.remove(frame_box)
+    sheet = np.ones((math.ceil(FRAMES / COLUMNS) * CELL, COLUMNS * CELL, 4), dtype=np.float32)
+    for frame in range(1, FRAMES + 1):
+        scene.frame_set(frame)
+        row, column = divmod(frame - 1, COLUMNS)
+        sheet[row * CELL:(row + 1) * CELL, column * CELL:(column + 1) * CELL] = render(CELL, CELL)
+    save_png(sheet, path)
+
+
 # -- 1. load the meshes and place the features ---------------------------------------------------------------
 t = START
 bpy.ops.wm.read_homefile(use_empty=True)
 # Spot faces -z and the penguin +z in their files: both turned to a three-quarter view of the camera at -y.
-source, target = load(SOURCE, math.pi * 0.8), load(TARGET, -math.pi * 0.2)
+source, target = load(f"{SOURCE}.obj", math.pi * 0.8), load(f"{TARGET}.obj", -math.pi * 0.2)
 features = json.loads(FEATURES.read_text())
 for name, (on_source, on_target) in features.items():
     api.add_feature(source, name, on_source)
@@ -201,14 +251,7 @@ t = step(f"{SOURCE}'s normals baked into {TARGET}'s UV layout ({BAKE_SIZE}² nor
          f"packed, in its material: {TARGET} wears {SOURCE}'s texture and surface detail)", t)
 
 # -- 5. the .blend -------------------------------------------------------------------------------------------
-scene.render.engine = 'BLENDER_WORKBENCH'
-scene.display.shading.light = 'STUDIO'
-scene.display.shading.color_type = 'TEXTURE'
-scene.render.image_settings.file_format = 'PNG'
-scene.render.film_transparent = False
-scene.view_settings.view_transform = 'Standard'
-scene.world = scene.world or bpy.data.worlds.new("World")
-scene.world.color = (0.6, 0.6, 0.6)
+use_workbench('TEXTURE')
 target.location.x = 1.3 * (world_bounds([source])[1][0] - world_bounds([target])[0][0])
 scene.frame_set(1)
 camera_on([source, target], 2 / 1)  # the file opens with the side-by-side view (F12 renders it)
@@ -219,28 +262,7 @@ t = step(f"saved {blend}", t)
 
 # -- 6. renders ----------------------------------------------------------------------------------------------
 target.hide_render = True
-morphed = []
-for frame in (1, 1 + FRAMES // 2):  # frame the camera on both ends of the morph
-    scene.frame_set(frame)
-    depsgraph = bpy.context.evaluated_depsgraph_get()
-    evaluated = source.evaluated_get(depsgraph)
-    mesh = evaluated.to_mesh()
-    morphed += [evaluated.matrix_world @ v.co for v in mesh.vertices]
-    evaluated.to_mesh_clear()
-corners = np.array(morphed)
-low, high = corners.min(axis=0), corners.max(axis=0)
-frame_box = bpy.data.objects.new("_bounds", bpy.data.meshes.new("_bounds"))
-frame_box.data.from_pydata([tuple(low), tuple(high)], [], [])
-scene.collection.objects.link(frame_box)
-camera_on([frame_box], 1.0)
-bpy.data.objects.remove(frame_box)
-rows = math.ceil(FRAMES / COLUMNS)
-sheet = np.ones((rows * CELL, COLUMNS * CELL, 4), dtype=np.float32)
-for frame in range(1, FRAMES + 1):
-    scene.frame_set(frame)
-    row, column = divmod(frame - 1, COLUMNS)
-    sheet[row * CELL:(row + 1) * CELL, column * CELL:(column + 1) * CELL] = render(CELL, CELL)
-save_png(sheet, OUT / "morph_contact_sheet.png")
+render_morph(source, OUT / "morph_contact_sheet.png")
 t = step(f"rendered {FRAMES} frames (Workbench, {CELL}x{CELL}) to {OUT / 'morph_contact_sheet.png'}", t)
 
 scene.frame_set(1)
@@ -272,4 +294,48 @@ camera_on([source, plain, target], 3 / 1)
 save_png(render(960, 320), OUT / "normal_transfer.png")
 t = step(f"rendered {SOURCE}, {TARGET} with its own normals and {TARGET} with {SOURCE}'s baked normals (Cycles) "
          f"to {OUT / 'normal_transfer.png'}", t)
+
+# -- 7. genus 1: two objects with a handle, mapped onto each other without the sphere ------------------------
+bpy.ops.wm.read_homefile(use_empty=True)
+scene = bpy.context.scene
+pair_source, pair_target = load(f"{PAIR_SOURCE}.off", math.pi * 0.15), load(f"{PAIR_TARGET}.obj", math.pi * 0.1)
+# The torus lies flat in its file (its ring in the xz plane, y up): stood up in its own coordinates, facing +z like
+# the kitten, so that the kitten's morph (made in the kitten's coordinates) stands up too.
+pair_target.data.transform(Matrix.Rotation(math.pi / 2, 4, 'X'))
+# A colour per vertex of the kitten: its position as a colour, in bands across its height.
+points = np.array([v.co[:] for v in pair_source.data.vertices])
+low, high = points.min(axis=0), points.max(axis=0)
+colours = np.ones((len(points), 4))
+colours[:, :3] = 0.25 + 0.75 * (points - low) / (high - low)
+colours[:, :3] *= 0.7 + 0.3 * (np.floor(8 * (points[:, 1] - low[1]) / (high[1] - low[1])) % 2)[:, None]
+layer = pair_source.data.color_attributes.new("Colour", 'FLOAT_COLOR', 'POINT')
+layer.data.foreach_set("color", colours.astype(np.float32).ravel())
+pair_source.data.color_attributes.active_color = layer
+t = step(f"loaded {PAIR_SOURCE} ({len(pair_source.data.vertices)} vertices, genus 1) and {PAIR_TARGET} "
+         f"({len(pair_target.data.vertices)}, genus 1), no features; colour attribute 'Colour' on {PAIR_SOURCE}", t)
+
+stats = api.compute([pair_source, pair_target], effort=1)
+medians = " / ".join(f"{values['median_symmetric_dirichlet']:.2f}" for values in stats.values())
+t = step(f"inter-surface map computed ({stats[PAIR_SOURCE]['method']}, no sphere): median symmetric Dirichlet "
+         f"{medians} (both directions, optimum 4), bijective {stats[PAIR_SOURCE]['bijective']}", t)
+
+api.transfer(pair_source, pair_target, color_attributes=["Colour"])
+pair_target.data.color_attributes.active_color = pair_target.data.color_attributes["Colour"]
+key = api.morph(pair_source, pair_target, align='bounds')
+api.animate_morph(pair_source, 1, FRAMES, ping_pong=True)
+scene.frame_start, scene.frame_end = 1, FRAMES
+t = step(f"'Colour' carried onto {PAIR_TARGET}; shape key '{key.name}' on {PAIR_SOURCE}, keyframed 0 -> 1 -> 0", t)
+
+use_workbench('VERTEX')
+pair_target.location.x = 1.3 * (world_bounds([pair_source])[1][0] - world_bounds([pair_target])[0][0])
+scene.frame_set(1)
+camera_on([pair_source, pair_target], 2 / 1)
+scene.render.resolution_x, scene.render.resolution_y = 640, 320
+blend = OUT / "kitten_torus.blend"
+bpy.ops.wm.save_as_mainfile(filepath=str(blend))
+save_png(render(640, 320), OUT / "colour_transfer.png")
+pair_target.hide_render = True
+render_morph(pair_source, OUT / "pair_morph_contact_sheet.png")
+t = step(f"saved {blend}; rendered {OUT / 'colour_transfer.png'} ({PAIR_SOURCE} and {PAIR_TARGET} with the "
+         f"carried colours) and {OUT / 'pair_morph_contact_sheet.png'}", t)
 step("done", START)
