@@ -97,10 +97,10 @@ void run_intersurface(const Arguments& args, Outcome& out) {
 
   char line[320];
   std::snprintf(line, sizeof line,
-                "%zu feature pairs (%d added), symmetric Dirichlet %.4f (A to B) / %.4f (B to A), %d / %d flipped, "
-                "%d + %d Steiner vertices",
+                "%zu feature pairs (%d added), symmetric Dirichlet %.4f (A to B) / %.4f (B to A), %d map folds "
+                "(%d / %d flipped samples), %d + %d Steiner vertices",
                 result.features.size(), result.added_features, ab.symmetric_dirichlet, ba.symmetric_dirichlet,
-                ab.flipped, ba.flipped, result.steiner_a, result.steiner_b);
+                result.map_flipped, ab.flipped, ba.flipped, result.steiner_a, result.steiner_b);
   out.summary = "wrote " + std::to_string(outputs.size()) + " files to " + args.output + ": " + line;
 }
 

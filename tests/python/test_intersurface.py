@@ -2,6 +2,7 @@
 exact, agreement with cat-lion's approximate dense map, round trips), genus 1 through a consistent partition, and
 one clear error for every unsupported pair."""
 import json
+import re
 
 import numpy as np
 import pytest
@@ -366,6 +367,19 @@ def test_cli_optimize_zero_keeps_the_composition(cmaps_binary, tmp_path):
     assert result.returncode == 0, result.stderr
     report = json.loads(result.stdout)
     assert report["symmetric_dirichlet"] == report["composition_dirichlet"]
+
+
+def test_cli_summary_tells_the_maps_folds_from_the_flipped_samples(cmaps_binary, tmp_path):
+    """Without --json one line: the map's own folds (0 for a bijective map) apart from the vertex sampling's
+    flipped samples, which a bijective map may still have where the target's chords fold."""
+    arguments = ("intersurface", SPOT, SPHERE, "-o", tmp_path / "maps", "--optimize", "0", "--effort", "0",
+                 "--method", "sphere")
+    report = json.loads(run(cmaps_binary, *arguments, "--json").stdout)
+    result = run(cmaps_binary, *arguments)
+    assert result.returncode == 0, result.stderr
+    found = re.search(r", (\d+) map folds \((\d+) / (\d+) flipped samples\), ", result.stdout)
+    assert found, result.stdout
+    assert [int(n) for n in found.groups()] == [report["map_flipped"], *report["flipped"]] and report["map_flipped"] == 0
 
 
 @pytest.mark.parametrize("meshes, reason", [
