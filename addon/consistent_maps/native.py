@@ -68,6 +68,12 @@ def sphere_locator(sphere, triangles):
     return _native.SphereLocator(sphere, triangles)
 
 
+def surface_locator(vertices, triangles):
+    """Closest points on a triangle mesh: the object's locate(points, threads=) gives (triangles (q,),
+    barycentric (q, 3), distances (q,)) of the surface point nearest each point."""
+    return _native.SurfaceLocator(vertices, triangles)
+
+
 def continue_across_seams(triangles, triangle_uvs, uvs, point_triangles, values, reference):
     """Texture coordinates values (q, 2) of points on triangles (m, 3) (corner k of triangle t has
     uvs[triangle_uvs[t, k]]), point i's computed in its triangle point_triangles[i]'s chart, returned in the

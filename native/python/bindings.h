@@ -15,5 +15,6 @@ void bind_intersurface(py::module_& m);         // intersurface_bindings.cpp: in
 void bind_geometry_image(py::module_& m);       // geometry_image_bindings.cpp: octahedral grids, images
 void bind_transfer(py::module_& m);             // transfer_bindings.cpp: texture coordinates across seams
 void bind_sphere_locator(py::module_& m);       // sphere_locator_bindings.cpp: point location
+void bind_surface_locator(py::module_& m);      // surface_locator_bindings.cpp: closest points
 
 }  // namespace cmaps::python

@@ -59,4 +59,5 @@ PYBIND11_MODULE(_native, m) {
   bind_geometry_image(m);
   bind_transfer(m);
   bind_sphere_locator(m);
+  bind_surface_locator(m);
 }

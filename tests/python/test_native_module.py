@@ -250,3 +250,30 @@ def test_gil_is_released(native):
         thread.join()
     during = [t for t in ticks if start < t < end]
     assert end - start < 0.02 or len(during) >= 3, f"{len(during)} ticks in {end - start:.3f} s"
+
+
+def test_surface_locator(native, spot_low):
+    """Points of the surface locate where they are; bad meshes and points are refused."""
+    vertices, triangles = spot_low
+    locator = native.SurfaceLocator(vertices, triangles)
+    rng = np.random.default_rng(2)
+    chosen = rng.integers(0, len(triangles), 300)
+    weights = rng.dirichlet([1, 1, 1], 300)
+    corners = vertices[triangles[chosen]]
+    points = np.einsum("qk,qkd->qd", weights, corners)
+    normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    normals /= np.linalg.norm(normals, axis=1, keepdims=True)
+    found, barycentric, distances = locator.locate(points, threads=2)
+    assert found.dtype == np.int32 and barycentric.shape == (300, 3) and (distances < 1e-12).all()
+    located = np.einsum("qk,qkd->qd", barycentric, vertices[triangles[found]])
+    assert np.abs(located - points).max() < 1e-12
+    # Lifted a little off the surface: never farther than the lift (the point it left is that far), and
+    # mostly exactly that far (elsewhere a concave neighbour may come nearer).
+    offset = 1e-4 * np.ptp(vertices, axis=0).max()
+    _, _, distances = locator.locate(points + offset * normals)
+    assert distances.max() <= offset * (1 + 1e-9) and np.median(np.abs(distances - offset)) < 1e-9 * offset
+    for bad in ((vertices, triangles[:0]), (vertices, triangles + len(vertices))):
+        with pytest.raises(native.InvalidMeshError):
+            native.SurfaceLocator(*bad)
+    with pytest.raises(native.InvalidMeshError, match="non-finite"):
+        locator.locate(np.array([[0.0, np.nan, 0.0]]))
