@@ -7,25 +7,30 @@ those UVs as emission, is baked by Cycles into a new image in the target's UV la
 (Blender rasterizes and pads the seams).
 
 Normal map: Cycles bakes, for a temporary copy of the target, what it interpolates per pixel
-of the target's UV layout: the sphere directions (the stored map) and Blender's tangent frame
+of the target's UV layout: where the pixel lands on the source and Blender's tangent frame
 of that UV map (MikkTSpace tangent, bitangent sign and normal per corner, from
-mesh.calc_tangents, stored on the copy as corner attributes). Each pixel's direction is
-located on the source (native point location), which gives the source's normal there (its
-shading normal, with its own tangent-space normal map applied when its material has one;
-turned by the features' rotation with align='features'), and the pixel becomes that normal
-expressed in the pixel's frame: the exact inverse of what Blender's Normal Map node decodes,
-so the target rendered with the map shows the source's normals. The target itself is not
-modified.
+mesh.calc_tangents, stored on the copy as corner attributes). Through the sphere a pixel's
+sphere direction (the stored map) is located on the source (native point location); a pair
+mapped directly stores no sphere, so the pixel's point of the chord triangle between its
+triangle's corners' images on the source is taken to the nearest point of the source (exact
+at the corners, as near to the map inside each triangle as the texture bake's interpolated
+UVs). That gives the source's normal there (its shading normal, with its own tangent-space
+normal map applied when its material has one; turned by the features' rotation with
+align='features'), and the pixel becomes that normal expressed in the pixel's frame: the
+exact inverse of what Blender's Normal Map node decodes, so the target rendered with the map
+shows the source's normals. The target itself is not modified.
 """
 import contextlib
+import os
 
 import bpy
 import numpy as np
 
-from . import alignment, mapping, maps, meshdata, morphs, results
+from . import alignment, mapping, maps, meshdata, morphs, native, results
 
 SOURCE_UV = "cm_bake_source_uv"
 SPHERE_ATTRIBUTE = results.ATTRIBUTE  # the stored sphere coordinates, a point attribute
+IMAGE_ATTRIBUTE = "cm_bake_image"  # a pair's vertices' images on the source, in the source's box scaled to [-1, 1]
 FRAME_TANGENT, FRAME_NORMAL, FRAME_SIGN = "cm_bake_tangent", "cm_bake_normal", "cm_bake_sign"
 NORMAL_ALIGN = ('none', 'features')
 
@@ -194,7 +199,7 @@ def bake(source, target, size=1024, margin=16, progress=None):
 
 
 def _normal_problems(source, target, size, align):
-    found = maps.problems([source, target]) or maps.sphere_problems([source, target])
+    found = maps.problems([source, target])
     if found:
         return found
     if align not in NORMAL_ALIGN:
@@ -294,11 +299,10 @@ def _uv(mesh, name):
     return values.reshape(-1, 2).astype(np.float64)
 
 
-def _source_normals_at(source, directions, rotation):
-    """Source's normals (unit, rotated) at the points of source the sphere directions land on: its shading
-    normals, with its own tangent-space normal map applied when its material has one."""
+def _source_normals_at(source, landing, rotation):
+    """Source's normals (unit, rotated) at the landing points: its shading normals, with its own tangent-space
+    normal map applied when its material has one."""
     from .transfer import corner_normals
-    landing = mapping.land(maps.parameterization(source), directions)
     corners = meshdata.loop_triangles(source.data)[1]
     normals = mapping.at_corners(landing, corners, corner_normals(source.data))
     normals /= np.maximum(np.linalg.norm(normals, axis=1, keepdims=True), 1e-12)
@@ -328,6 +332,27 @@ def _bake_attribute(mesh, name, size, margin):
         return _pixels(image)[:, :3].astype(np.float64) * 2 - 1
     finally:
         bpy.data.images.remove(image)
+
+
+def _image_attribute(mesh, source, target):
+    """Stores on the copy of a pair's target each vertex's image on the source (source object space) as the
+    point attribute IMAGE_ATTRIBUTE, boxed into [-1, 1] (baked emission stays non-negative); returns (centre,
+    half size) to decode it."""
+    triangles = meshdata.loop_triangles(source.data)[0]
+    images = mapping.at_vertices(maps.vertex_landing(target, source), triangles, maps.positions(source.data))
+    low, high = images.min(axis=0), images.max(axis=0)
+    centre, half = (low + high) / 2, np.maximum((high - low) / 2, 1e-9) * 1.01
+    mesh.attributes.new(IMAGE_ATTRIBUTE, 'FLOAT_VECTOR', 'POINT').data.foreach_set(
+        "vector", ((images - centre) / half).astype(np.float32).ravel())
+    return centre, half
+
+
+def _nearest_on(source, points):
+    """Landing of the points of source nearest to the given points (source object space)."""
+    triangles = meshdata.loop_triangles(source.data)[0]
+    located, barycentric, _ = native.surface_locator(maps.positions(source.data), triangles).locate(
+        points, threads=os.cpu_count() or 1)
+    return mapping.Landing(located.astype(np.int64), barycentric)
 
 
 def _tangent_frames(mesh, uv_map):
@@ -384,23 +409,32 @@ def bake_normals(source, target, size=1024, margin=16, align='features', progres
         raise maps.MapError("\n".join(found))
     rotation = _normal_rotation(source, target, align)
     uv_map = target.data.uv_layers.active.name
-    names = (SPHERE_ATTRIBUTE, FRAME_TANGENT, FRAME_NORMAL, FRAME_SIGN)
-    steps = _Steps(progress, len(names) + 1)
+    pair = results.pair_map(target.data) is not None
+    steps = _Steps(progress, 5)
     baked = {}
     with _baking_copy(target) as (_, mesh):
         _frame_attributes(mesh, uv_map)
-        for name in names[1:]:
+        names = (FRAME_TANGENT, FRAME_NORMAL, FRAME_SIGN)
+        if pair:
+            centre, half = _image_attribute(mesh, source, target)
+            names += (IMAGE_ATTRIBUTE,)
+        for name in names:
             baked[name] = _bake_attribute(mesh, name, size, margin)
             steps.done()
-    with _baking_copy(target, _refined_copy(target, uv_map)) as (_, mesh):
-        baked[SPHERE_ATTRIBUTE] = _bake_attribute(mesh, SPHERE_ATTRIBUTE, size, margin)
-        steps.done()
-    directions = baked[SPHERE_ATTRIBUTE]
-    length = np.linalg.norm(directions, axis=1)
-    covered = np.abs(length - 1) < 0.3  # interpolated unit vectors; cleared pixels decode to length 1.73
+    if pair:
+        # Interpolated unit normals; cleared pixels decode to length 1.73.
+        covered = np.abs(np.linalg.norm(baked[FRAME_NORMAL], axis=1) - 1) < 0.3
+        landing = _nearest_on(source, centre + half * baked[IMAGE_ATTRIBUTE][covered])
+    else:
+        with _baking_copy(target, _refined_copy(target, uv_map)) as (_, mesh):
+            directions = _bake_attribute(mesh, SPHERE_ATTRIBUTE, size, margin)
+            steps.done()
+        length = np.linalg.norm(directions, axis=1)
+        covered = np.abs(length - 1) < 0.3  # interpolated unit vectors, as above
+        landing = mapping.land(maps.parameterization(source), directions[covered] / length[covered, None])
     tangents, normals = baked[FRAME_TANGENT][covered], baked[FRAME_NORMAL][covered]
     signs = np.where(baked[FRAME_SIGN][covered, 0] < 0, -1.0, 1.0)
-    wanted = _source_normals_at(source, directions[covered] / length[covered, None], rotation)
+    wanted = _source_normals_at(source, landing, rotation)
     pixels = np.tile(np.array([0.5, 0.5, 1.0, 1.0], dtype=np.float32), (size * size, 1))
     pixels[covered, :3] = _tangent_space(wanted, tangents, signs, normals) * 0.5 + 0.5
     result = bpy.data.images.new(f"{target.name} normals from {source.name}", size, size, alpha=False)
