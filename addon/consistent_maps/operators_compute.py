@@ -24,10 +24,13 @@ def _summary(stats):
         median = ", ".join(f"{s['median_symmetric_dirichlet']:.1f}" for s in stats.values())
         mean = ", ".join(f"{s['symmetric_dirichlet']:.1f}" for s in stats.values())
         way = "directly" if first.get("method") == "partition" else "through the sphere"
-        # Folded samples: triangles that would show inverted at the end of a morph.
+        # Folded samples: triangles that would show inverted at the end of a morph, though the map itself
+        # (bijective: it folds nowhere) is continuous and one-to-one.
         folds = ", ".join(str(s.get("folded_samples", 0)) for s in stats.values())
+        bijective = "bijective" if all(s.get("bijective") for s in stats.values()) else "FOLDED"
         return (f"Mapped 2 objects of genus {first['genus']} onto each other {way} in {first['seconds']:.1f} s "
-                f"(symmetric Dirichlet median {median}, mean {mean}; best 4; folded triangles {folds})")
+                f"(symmetric Dirichlet median {median}, mean {mean}; best 4; the map {bijective}; triangles "
+                f"folded at the morph's end {folds})")
     worst = min(s["efficiency"] for s in stats.values())
     seconds = sum(s["seconds"] for s in stats.values())
     return f"Mapped {len(stats)} object(s) onto the sphere in {seconds:.1f} s (lowest efficiency {worst:.3f})"

@@ -7,7 +7,7 @@ Run by run_tests.py after test_maps.py.
 import bpy
 import numpy as np
 
-from consistent_maps import api, maps, meshdata
+from consistent_maps import api, maps, meshdata, operators_compute
 from consistent_maps.transfer import corner_normals
 import test_addon
 from test_addon import SHARED, BALL, expect_error, load, make_set, snapshot
@@ -45,6 +45,8 @@ def test_pair_of_genus_one_is_computed_and_morphs_onto_the_partner():
     assert stats["genus"] == 1 and stats["symmetric_dirichlet"] >= 4 and stats["median_symmetric_dirichlet"] >= 4
     assert 0 <= stats["folded_samples"] < len(a.data.polygons) // 20  # bench, 16 true pairs: 24 of 4,608
     assert stats["bijective"], "the map itself folds nowhere (map_flipped 0)"
+    summary = operators_compute._summary({obj.name: dict(obj.data["cm_stats"]) for obj in (a, b)})
+    assert "genus 1 onto each other directly" in summary and "the map bijective" in summary, summary
     key = api.morph(a, b, align='none')
     shape = _get(key.data, "co", 3)
     truth = maps.positions(b.data)
