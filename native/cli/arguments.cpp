@@ -22,7 +22,8 @@ const char* const kUsage = R"(usage:
 commands:
   check    read IN (.obj .off .ply .stl), print its topology and exit 0 if it
            can be mapped to the sphere (one closed, manifold, consistently
-           oriented genus-0 surface); otherwise exit 1 naming the defect.
+           oriented genus-0 surface); otherwise exit 1 naming the defect, and
+           say whether `intersurface` takes it (any genus, holes allowed).
   sphere   compute a stretch-minimizing bijective map of IN onto the unit
            sphere and write OUT (.obj .ply .off): the input triangles and vertex
            order, with each position replaced by its unit vector.

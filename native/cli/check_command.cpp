@@ -1,6 +1,10 @@
-// `cmaps check`: the mesh report, and whether the mesh suits a sphere.
+// `cmaps check`: the mesh report, and whether the mesh suits a sphere or,
+// failing that, an inter-surface map with a partner of its genus.
 #include "commands.h"
 
+#include <string>
+
+#include "consistent_maps/errors.h"
 #include "consistent_maps/mesh_check.h"
 #include "consistent_maps/mesh_io.h"
 
@@ -34,7 +38,22 @@ void run_check(const Arguments& args, Outcome& out) {
   out.faces = report.faces;
   add_report(out.json, report);
   out.summary = args.input + ": " + cmaps::summarize(report);
-  cmaps::require_sphere_topology(mesh);
+  bool pair_map = true;
+  try {
+    cmaps::require_pair_map_topology(mesh);
+  } catch (const cmaps::InvalidInput&) {
+    pair_map = false;
+  }
+  out.json.add("pair_map", pair_map);
+  try {
+    cmaps::require_sphere_topology(mesh);
+  } catch (const cmaps::InvalidInput&) {
+    if (pair_map)
+      out.summary += "\nnot for the sphere, but `cmaps intersurface` maps it onto a partner of genus " +
+                     std::to_string(report.genus) +
+                     (report.closed() ? "" : " with as many holes (" + std::to_string(report.boundary_loops) + ")");
+    throw;
+  }
   out.summary += "\nok: suitable for spherical parameterization";
 }
 

@@ -534,6 +534,25 @@ TEST(IntersurfaceMap, NonManifoldIsRefused) {
   EXPECT_NE(message.find("non-manifold"), std::string::npos) << message;
 }
 
+// The first defect, named with the mesh it is on: a triangle repeating a
+// corner on a torus (it reached the partition before, which failed on "an
+// edge with more than two triangles"), two components.
+TEST(IntersurfaceMap, EachDefectIsNamedWithItsMesh) {
+  TriangleMesh torus = read_mesh(shared_mesh("higher-genus/torus.obj"));
+  const TriangleMesh knot = read_mesh(shared_mesh("higher-genus/knot.obj"));
+  torus.triangles.push_back({{0, 0, 1}});
+  EXPECT_EQ(error_of(torus, knot, {}),
+            "A: triangle 4608 uses the same vertex twice; an inter-surface map needs three distinct corners per "
+            "triangle");
+  TriangleMesh two = test::octahedron();
+  const int n = int(two.vertices.size());
+  for (int v = 0; v < n; ++v) two.vertices.push_back(two.vertices[v] + Vec3(5, 0, 0));
+  for (int f = 0, m = int(two.triangles.size()); f < m; ++f)
+    two.triangles.push_back({{two.triangles[f][0] + n, two.triangles[f][1] + n, two.triangles[f][2] + n}});
+  EXPECT_EQ(error_of(test::octahedron(), two, {}),
+            "B: mesh has 2 components; an inter-surface map needs one connected surface");
+}
+
 // Genus >= 1 with holes (thesis 5.4, boundaries): a torus missing one
 // triangle maps onto a copy of itself exactly; its 3 rim vertices become the
 // rim's features.

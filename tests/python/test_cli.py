@@ -6,7 +6,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from conftest import BAD_FILES, REJECTED, SHARED, rejection_reason
+from conftest import BAD_FILES, REJECTED, SHARED, readme_table, rejection_reason
 
 SPOT_LOW = SHARED / "genus0" / "spot_low.obj"
 
@@ -47,7 +47,7 @@ def test_check_json(cmaps_binary):
     result = run(cmaps_binary, "check", SPOT_LOW, "--json")
     assert result.returncode == 0, result.stderr
     out = json.loads(result.stdout)
-    assert out["faces"] == 1654 and out["vertices"] == 829 and out["genus"] == 0
+    assert out["faces"] == 1654 and out["vertices"] == 829 and out["genus"] == 0 and out["pair_map"] is True
     assert out["stretch_efficiency"] is None and out["flipped"] is None and out["error"] is None
     assert out["seconds"] >= 0
 
@@ -61,6 +61,11 @@ def test_rejects_shared_meshes(cmaps_binary, tmp_path, relative, command):
     expect_failure(run(cmaps_binary, command, SHARED / relative, *extra), reason)
     expect_failure(run(cmaps_binary, command, SHARED / relative, *extra, "--json"), reason, json_output=True)
     assert not output.exists()
+    if command == "check":  # what the sphere refuses an inter-surface map may still take: check says so
+        usable = not relative.startswith("invalid/")
+        hint = f"`cmaps intersurface` maps it onto a partner of genus {readme_table()[relative]['genus']}"
+        assert (hint in run(cmaps_binary, "check", SHARED / relative).stdout) == usable
+        assert json.loads(run(cmaps_binary, "check", SHARED / relative, "--json").stdout)["pair_map"] == usable
 
 
 @pytest.mark.parametrize("bad_file", BAD_FILES, indirect=True, ids=[b[0] for b in BAD_FILES])

@@ -45,4 +45,11 @@ std::string summarize(const MeshReport& report);
 // holes, as constrained and consistent parameterization take them).
 void require_sphere_topology(const TriangleMesh& mesh, bool allow_holes = false);
 
+// The same for an inter-surface map (with a partner of the same genus and as
+// many holes): one manifold, consistently oriented surface of finite
+// coordinates, closed or with holes, of any genus, e.g. "mesh has 2
+// components; an inter-surface map needs one connected surface". Vertices no
+// triangle uses are allowed: the map leaves them out.
+void require_pair_map_topology(const TriangleMesh& mesh);
+
 }  // namespace cmaps

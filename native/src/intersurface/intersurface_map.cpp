@@ -23,19 +23,17 @@
 namespace cmaps {
 namespace {
 
-// The genus of one closed, manifold, consistently oriented, connected mesh;
-// TopologyError naming the mesh (`name` is "A" or "B") otherwise.
+// The genus of a mesh an inter-surface map takes; the error naming the mesh
+// (`name` is "A" or "B") and its first defect otherwise.
 int checked_genus(const TriangleMesh& mesh, const std::string& name) {
-  const MeshReport r = check_mesh(mesh);
-  const bool usable = r.vertices > 0 && r.genus >= 0 && r.manifold() &&
-                      r.components == 1 && r.referenced_vertices == r.vertices &&
-                      r.inconsistently_oriented_edges == 0 && r.non_finite_vertices == 0 &&
-                      r.out_of_range_indices == 0;
-  if (!usable)
-    throw TopologyError(name + ": mesh has " + summarize(r) +
-                        "; an inter-surface map needs one manifold, consistently oriented surface (closed or with "
-                        "separate holes)");
-  return r.genus;
+  try {
+    require_pair_map_topology(mesh);
+  } catch (const TopologyError& e) {
+    throw TopologyError(name + ": " + e.what());
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(name + ": " + e.what());
+  }
+  return check_mesh(mesh).genus;
 }
 
 void check_features(const std::vector<FeaturePair>& features, const TriangleMesh& a, const TriangleMesh& b) {
@@ -158,16 +156,6 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
   IntersurfaceResult result;
   result.genus = genus_a;
   result.features = features;
-  if (genus_a == 0)
-    for (const auto& [mesh, name] : {std::pair<const TriangleMesh&, const char*>{a, "A"}, {b, "B"}}) {
-      try {
-        require_sphere_topology(mesh, /*allow_holes=*/true);
-      } catch (const TopologyError& e) {
-        throw TopologyError(std::string(name) + ": " + e.what());
-      } catch (const InvalidInput& e) {
-        throw InvalidInput(std::string(name) + ": " + e.what());
-      }
-    }
   if (options.restarts < 1) throw InvalidInput("restarts must be at least 1, got " + std::to_string(options.restarts));
   if (options.starts < 1) throw InvalidInput("starts must be at least 1, got " + std::to_string(options.starts));
   if (genus_a > 0 && options.method == IntersurfaceMethod::sphere)

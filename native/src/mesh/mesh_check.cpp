@@ -224,10 +224,14 @@ std::string summarize(const MeshReport& r) {
   return s.str();
 }
 
-void require_sphere_topology(const TriangleMesh& mesh, bool allow_holes) {
-  const Analysis a = analyze(mesh);
+namespace {
+
+// Throws InvalidInput / TopologyError naming the first defect that keeps the
+// analysed mesh from being one manifold, consistently oriented surface of at
+// least 4 triangles with finite coordinates (closed unless `allow_holes`);
+// `needs` ("; <what> needs ") joins the defect to what it breaks.
+void require_surface(const Analysis& a, const std::string& needs, bool allow_holes) {
   const MeshReport& r = a.report;
-  const std::string needs = "; spherical parameterization needs ";
 
   if (r.vertices == 0) throw InvalidInput("mesh is empty (no vertices)");
   if (r.faces == 0) throw InvalidInput("mesh has no triangles");
@@ -263,6 +267,15 @@ void require_sphere_topology(const TriangleMesh& mesh, bool allow_holes) {
     throw TopologyError("mesh has " + plural(r.inconsistently_oriented_edges, "inconsistently oriented edge") +
                         " (e.g. edge " + edge_name(a.inconsistent_edge) + ")" + needs +
                         "consistently oriented triangles");
+}
+
+}  // namespace
+
+void require_sphere_topology(const TriangleMesh& mesh, bool allow_holes) {
+  const Analysis a = analyze(mesh);
+  const MeshReport& r = a.report;
+  const std::string needs = "; spherical parameterization needs ";
+  require_surface(a, needs, allow_holes);
   if (r.genus != 0)
     throw TopologyError("mesh has genus " + std::to_string(r.genus) + " (" +
                         (r.boundary_loops > 0 ? plural(r.boundary_loops, "boundary loop") : "closed") +
@@ -272,6 +285,10 @@ void require_sphere_topology(const TriangleMesh& mesh, bool allow_holes) {
     throw InvalidInput("mesh has " + plural(r.vertices - r.referenced_vertices, "unreferenced vertex") +
                        " (e.g. vertex " + std::to_string(a.first_unreferenced) +
                        "); every vertex must belong to a triangle to get a position on the sphere");
+}
+
+void require_pair_map_topology(const TriangleMesh& mesh) {
+  require_surface(analyze(mesh), "; an inter-surface map needs ", /*allow_holes=*/true);
 }
 
 double signed_volume(const TriangleMesh& mesh) {
