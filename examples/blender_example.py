@@ -53,9 +53,9 @@ def step(text, since):
     return time.perf_counter()
 
 
-def load(file_name, turn, tilt=math.pi / 2):
-    """The mesh file as a new object named after it, turned by `tilt` about x and `turn` about z (the
-    files are y-up, Blender is z-up: a tilt of a quarter turn stands them up)."""
+def load(file_name, turn):
+    """The mesh file as a new object named after it, stood up (the files are y-up, Blender is z-up) and
+    turned by `turn` about z."""
     name = Path(file_name).stem
     vertices, triangles = _native.read_mesh(str(MESHES / file_name))
     mesh = bpy.data.meshes.new(name)
@@ -63,7 +63,7 @@ def load(file_name, turn, tilt=math.pi / 2):
     mesh.update()
     obj = bpy.data.objects.new(name, mesh)
     bpy.context.scene.collection.objects.link(obj)
-    obj.rotation_euler = (tilt, 0, turn)
+    obj.rotation_euler = (math.pi / 2, 0, turn)
     for polygon in mesh.polygons:
         polygon.use_smooth = True
     return obj

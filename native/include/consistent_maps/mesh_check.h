@@ -49,7 +49,7 @@ void require_sphere_topology(const TriangleMesh& mesh, bool allow_holes = false)
 // many holes): one manifold, consistently oriented surface of finite
 // coordinates, closed or with holes, of any genus, e.g. "mesh has 2
 // components; an inter-surface map needs one connected surface". Vertices no
-// triangle uses are allowed: the map leaves them out.
-void require_pair_map_topology(const TriangleMesh& mesh);
+// triangle uses are allowed: the map leaves them out. Returns the mesh's report.
+MeshReport require_pair_map_topology(const TriangleMesh& mesh);
 
 }  // namespace cmaps

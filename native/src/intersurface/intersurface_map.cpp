@@ -27,13 +27,12 @@ namespace {
 // (`name` is "A" or "B") and its first defect otherwise.
 int checked_genus(const TriangleMesh& mesh, const std::string& name) {
   try {
-    require_pair_map_topology(mesh);
+    return require_pair_map_topology(mesh).genus;
   } catch (const TopologyError& e) {
     throw TopologyError(name + ": " + e.what());
   } catch (const InvalidInput& e) {
     throw InvalidInput(name + ": " + e.what());
   }
-  return check_mesh(mesh).genus;
 }
 
 void check_features(const std::vector<FeaturePair>& features, const TriangleMesh& a, const TriangleMesh& b) {

@@ -287,8 +287,10 @@ void require_sphere_topology(const TriangleMesh& mesh, bool allow_holes) {
                        "); every vertex must belong to a triangle to get a position on the sphere");
 }
 
-void require_pair_map_topology(const TriangleMesh& mesh) {
-  require_surface(analyze(mesh), "; an inter-surface map needs ", /*allow_holes=*/true);
+MeshReport require_pair_map_topology(const TriangleMesh& mesh) {
+  const Analysis a = analyze(mesh);
+  require_surface(a, "; an inter-surface map needs ", /*allow_holes=*/true);
+  return a.report;
 }
 
 double signed_volume(const TriangleMesh& mesh) {
