@@ -42,6 +42,21 @@ IntegerArray to_integers(const py::handle& data, const char* name) {
   return IntegerArray::ensure(array);
 }
 
+std::vector<int> to_index_vector(const py::handle& data, const char* name, std::int64_t limit) {
+  const auto indices = to_integers(data, name);
+  if (indices.ndim() != 1)
+    raise(PyExc_ValueError, std::string(name) + " must have shape (n,), got " + shape_of(indices));
+  std::vector<int> result(std::size_t(indices.shape(0)));
+  for (std::size_t i = 0; i < result.size(); ++i) {
+    const std::int64_t v = indices.data()[i];
+    if (v < 0 || (limit >= 0 && v >= limit))
+      raise(PyExc_IndexError, std::string(name) + "[" + std::to_string(i) + "] is " + std::to_string(v) +
+                                  ", out of range [0, " + std::to_string(limit) + ")");
+    result[i] = int(v);
+  }
+  return result;
+}
+
 std::vector<cmaps::Vec3> to_points(const py::handle& data, const char* name) {
   py::array array = as_array(data, name);
   const char kind = array.dtype().kind();

@@ -33,6 +33,8 @@ std::string shape_of(const py::array& array);
 void require_n_by_3(const py::array& array, const char* name);
 // Any integer array-like as C-contiguous int64 (bools and floats are refused).
 IntegerArray to_integers(const py::handle& data, const char* name);
+// (n,) integers, each in [0, limit) when limit >= 0, or IndexError naming the entry.
+std::vector<int> to_index_vector(const py::handle& data, const char* name, std::int64_t limit);
 // (n, 3) real numbers.
 std::vector<cmaps::Vec3> to_points(const py::handle& data, const char* name);
 // (m, 3) vertex indices, each in [0, vertex_count).

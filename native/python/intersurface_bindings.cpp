@@ -8,6 +8,7 @@
 
 #include "bindings.h"
 #include "consistent_maps/intersurface_map.h"
+#include "consistent_maps/pair_remesh.h"
 #include "conversions.h"
 #include "python_progress.h"
 
@@ -133,6 +134,45 @@ py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, co
   return d;
 }
 
+// A (triangles (n,), barycentric (n, 3)) pair: each of n points on `mesh`'s triangles.
+std::vector<cmaps::SurfacePoint> to_surface_points(const py::handle& data, const cmaps::TriangleMesh& mesh,
+                                                   const std::string& name) {
+  const py::tuple pair = py::cast<py::tuple>(data);
+  if (pair.size() != 2) raise(PyExc_ValueError, name + " must be (triangles, barycentric)");
+  const std::vector<int> triangles =
+      to_index_vector(pair[0], (name + " triangles").c_str(), std::int64_t(mesh.triangles.size()));
+  const std::vector<cmaps::Vec3> weights = to_points(pair[1], (name + " barycentric").c_str());
+  if (weights.size() != triangles.size())
+    raise(PyExc_ValueError, name + " has " + std::to_string(weights.size()) + " barycentric rows for " +
+                                std::to_string(triangles.size()) + " triangles");
+  std::vector<cmaps::SurfacePoint> points(triangles.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    points[i] = {triangles[i], {weights[i].x(), weights[i].y(), weights[i].z()}};
+  return points;
+}
+
+py::dict remesh_pair(const py::handle& mesh_a, const py::handle& mesh_b, const py::handle& a_to_b_data,
+                     const py::handle& b_to_a_data, const py::handle& pairs_data, int target_vertices) {
+  const cmaps::TriangleMesh a = to_mesh_pair(mesh_a, "mesh_a"), b = to_mesh_pair(mesh_b, "mesh_b");
+  const std::vector<cmaps::SurfacePoint> a_to_b = to_surface_points(a_to_b_data, b, "a_to_b");
+  const std::vector<cmaps::SurfacePoint> b_to_a = to_surface_points(b_to_a_data, a, "b_to_a");
+  const std::vector<cmaps::FeaturePair> pairs = to_feature_pairs(pairs_data);
+  cmaps::PairRemesh remesh;
+  {
+    py::gil_scoped_release release;
+    remesh = cmaps::remesh_pair(a, b, a_to_b, b_to_a, pairs, target_vertices);
+  }
+  py::dict d;
+  d["b_carries"] = remesh.b_carries;
+  d["carrier_vertex"] = to_numpy(remesh.carrier_vertex);
+  d["triangles"] = to_numpy(remesh.triangles);
+  d["a_positions"] = to_numpy(remesh.a_positions);
+  d["b_positions"] = to_numpy(remesh.b_positions);
+  d["feature_vertices"] = to_numpy(remesh.feature_vertices);
+  d["folded_triangles"] = remesh.folded_triangles;
+  return d;
+}
+
 }  // namespace
 
 void bind_intersurface(py::module_& m) {
@@ -188,6 +228,20 @@ void bind_intersurface(py::module_& m) {
         "over in their patches' embeddings and B's vertices outside the triangle of A said to hold them;\n"
         "'seconds' and per stage. Raises InvalidMeshError for different genus,\n"
         "non-manifold meshes or bad pairs, Cancelled when progress returns False.");
+  m.def("remesh_pair", &remesh_pair, py::arg("mesh_a"), py::arg("mesh_b"), py::arg("a_to_b"), py::arg("b_to_a"),
+        py::arg("feature_pairs"), py::arg("target_vertices"),
+        "Consistent remeshes of two meshes mapped onto each other (any genus, holes kept): one mesh (the\n"
+        "carrier) simplified to target_vertices, or as far as collapses go without folding a triangle on\n"
+        "either surface, by collapses judged on both it and its image on the other, so the two remeshes share\n"
+        "one connectivity; A and B each carry once, the remesh with fewer folded triangles is kept.\n"
+        "mesh_a, mesh_b: (vertices, triangles); a_to_b: (triangles (nA,), barycentric (nA, 3)), each vertex of\n"
+        "A on B's triangles (intersurface_map's 'a_to_b_triangle', 'a_to_b_barycentric'), b_to_a likewise;\n"
+        "feature_pairs (k, 2): [vertex of A, vertex of B] kept. Returns a dict: 'b_carries' (whose vertices\n"
+        "the remesh's are), 'carrier_vertex' (v,) int32, the carrier's vertex each remesh vertex is;\n"
+        "'triangles' (f, 3); 'a_positions' and 'b_positions' (v, 3), on A and on B; 'feature_vertices' (k,),\n"
+        "the remesh vertex of each pair; 'folded_triangles', those facing against the surface they lie on.\n"
+        "Raises InvalidMeshError for a mesh that is not one manifold, consistently oriented surface, a\n"
+        "feature out of range or a target below 4. Releases the GIL.");
 }
 
 }  // namespace cmaps::python

@@ -14,22 +14,6 @@ namespace py = pybind11;
 
 namespace {
 
-// (n,) integers, each in [0, limit) when limit >= 0.
-std::vector<int> to_index_vector(const py::handle& data, const char* name, std::int64_t limit) {
-  const auto indices = to_integers(data, name);
-  if (indices.ndim() != 1)
-    raise(PyExc_ValueError, std::string(name) + " must have shape (n,), got " + shape_of(indices));
-  std::vector<int> result(std::size_t(indices.shape(0)));
-  for (std::size_t i = 0; i < result.size(); ++i) {
-    const std::int64_t v = indices.data()[i];
-    if (v < 0 || (limit >= 0 && v >= limit))
-      raise(PyExc_IndexError, std::string(name) + "[" + std::to_string(i) + "] is " + std::to_string(v) +
-                                  ", out of range [0, " + std::to_string(limit) + ")");
-    result[i] = int(v);
-  }
-  return result;
-}
-
 // (n, 2) real numbers.
 std::vector<std::array<double, 2>> to_pairs(const py::handle& data, const char* name) {
   const py::array array = as_array(data, name);

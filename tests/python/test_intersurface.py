@@ -463,3 +463,29 @@ def test_cli_genus_one(cmaps_binary, native, tmp_path):
     expect_written_maps(out, a, b)
     triangles, weights = read_points(out / "A_to_B.txt")
     assert weights[1000][list(b[1][triangles[1000]]).index(500)] == 1  # the given pair maps exactly
+
+
+def test_remesh_pair(native):
+    """Both remeshes share one connectivity, each vertex on its own surface (the carrier's one of its vertices,
+    the other's that vertex's image), the feature pair at one index, folding far less than the map's vertex
+    sampling; bad input refused with its reason."""
+    a, b = native.read_mesh(str(TORUS)), native.read_mesh(str(KNOT))
+    r = native.intersurface_map(a, b, [[0, 7]])
+    a_to_b, b_to_a = (r["a_to_b_triangle"], r["a_to_b_barycentric"]), (r["b_to_a_triangle"], r["b_to_a_barycentric"])
+    remesh = native.remesh_pair(a, b, a_to_b, b_to_a, [[0, 7]], 600)
+    assert remesh["carrier_vertex"].shape == (600,) and remesh["triangles"].shape == (1200, 3)  # a torus: F = 2 V
+    own, other, image = ("b", "a", "b_on_a") if remesh["b_carries"] else ("a", "b", "a_on_b")
+    carrier = (b if remesh["b_carries"] else a)[0]
+    assert (remesh[f"{own}_positions"] == carrier[remesh["carrier_vertex"]]).all()
+    assert np.abs(remesh[f"{other}_positions"] - r[image][remesh["carrier_vertex"]]).max() < 1e-12
+    feature = remesh["feature_vertices"][0]
+    assert (remesh["a_positions"][feature] == a[0][0]).all() and np.abs(remesh["b_positions"][feature] - b[0][7]).max() < 1e-12
+    assert remesh["folded_triangles"] < min(r["flipped"]) / 4, (remesh["folded_triangles"], r["flipped"])
+    with pytest.raises(native.InvalidMeshError, match="feature vertex 5000 out of range"):
+        native.remesh_pair(a, b, a_to_b, b_to_a, [[5000, 7]], 600)
+    with pytest.raises(ValueError, match="a_to_b has 3 barycentric rows for"):
+        native.remesh_pair(a, b, (a_to_b[0], a_to_b[1][:3]), b_to_a, [[0, 7]], 600)
+    with pytest.raises(IndexError, match=r"b_to_a triangles\[0\] is -1"):
+        native.remesh_pair(a, b, a_to_b, (b_to_a[0] * 0 - 1, b_to_a[1]), [[0, 7]], 600)
+    with pytest.raises(native.InvalidMeshError, match="at least 4 vertices"):
+        native.remesh_pair(a, b, a_to_b, b_to_a, [[0, 7]], 3)

@@ -29,8 +29,16 @@ struct SimplificationOptions {
   // Further geometries sharing the input's connectivity (vertex order); the
   // quadric error and the flip test then cover every geometry.
   std::vector<std::vector<Vec3>> extra_geometries;
+  // Per geometry (the input's first, then the extra ones; empty = none), one
+  // normal per vertex: that of the surface it lies on. A triangle facing
+  // against its corners' normals is folded: no collapse may fold a triangle,
+  // one may turn a folded triangle over, and collapses removing folds go first.
+  std::vector<std::vector<Vec3>> reference_normals;
   // Stop at this many vertices (4 = tetrahedron) or when nothing can collapse.
   int target_vertices = 4;
+  // When the geometric tests block every collapse before the target: go on
+  // without them (true), or stop there.
+  bool finish_without_geometric_tests = true;
 };
 
 // The inverse of the half-edge collapse `removed` -> `kept`.

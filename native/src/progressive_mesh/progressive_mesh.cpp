@@ -31,6 +31,13 @@ class Simplifier {
                            std::to_string(n));
       geometries_.push_back(&g);
     }
+    if (options.reference_normals.size() > geometries_.size())
+      throw InvalidInput("reference normals for " + std::to_string(options.reference_normals.size()) +
+                         " geometries, expected at most " + std::to_string(geometries_.size()));
+    for (const auto& normals : options.reference_normals)
+      if (!normals.empty() && static_cast<int>(normals.size()) != n)
+        throw InvalidInput("reference normals for " + std::to_string(normals.size()) + " vertices, expected " +
+                           std::to_string(n));
     face_alive_.assign(tris_.size(), 1);
     vertex_alive_.assign(n, 0);
     vertex_faces_.resize(n);
@@ -71,7 +78,7 @@ class Simplifier {
       }
       // The geometric tests can block every remaining collapse; the topology
       // alone never blocks one before a tetrahedron, so finish without them.
-      if (!strict_ || alive_ <= options_.target_vertices) break;
+      if (!strict_ || alive_ <= options_.target_vertices || !options_.finish_without_geometric_tests) break;
     }
     ProgressiveMesh pm;
     pm.vertex_count = static_cast<int>(vertex_alive_.size());
@@ -160,9 +167,13 @@ class Simplifier {
   }
 
   // Moving u onto v must not flip (or, for a positive-area triangle, fold)
-  // any triangle that survives, in any geometry.
+  // any triangle that survives, in any geometry. Against reference normals,
+  // a triangle facing along them must keep doing so; one facing against them
+  // may turn over (that unfolds it).
   bool geometry_ok(int u, int v) const {
-    for (const auto* x : geometries_) {
+    for (size_t g = 0; g < geometries_.size(); ++g) {
+      const auto* x = geometries_[g];
+      const bool referenced = g < options_.reference_normals.size() && !options_.reference_normals[g].empty();
       for (int f : vertex_faces_[u]) {
         const Triangle& t = tris_[f];
         if (t[0] == v || t[1] == v || t[2] == v) continue;
@@ -171,10 +182,39 @@ class Simplifier {
         const Vec3& b = (*x)[t[(k + 2) % 3]];
         const Vec3 before = (a - (*x)[u]).cross(b - (*x)[u]);
         const Vec3 after = (a - (*x)[v]).cross(b - (*x)[v]);
-        if (before.squaredNorm() > 0 && before.dot(after) <= 0) return false;
+        if (referenced) {
+          const auto& n = options_.reference_normals[g];
+          const Vec3 shared = n[t[(k + 1) % 3]] + n[t[(k + 2) % 3]];
+          const bool folded = before.dot(shared + n[u]) <= 0;
+          if (!folded && (before.dot(after) <= 0 || after.dot(shared + n[v]) <= 0)) return false;
+        } else if (before.squaredNorm() > 0 && before.dot(after) <= 0) {
+          return false;
+        }
       }
     }
     return true;
+  }
+
+  // How many triangles of u's star facing against the reference normals
+  // moving u onto v turns (or collapses) away, less those it turns against.
+  int folds_removed(int u, int v) const {
+    int removed = 0;
+    for (size_t g = 0; g < geometries_.size() && g < options_.reference_normals.size(); ++g) {
+      const auto& n = options_.reference_normals[g];
+      if (n.empty()) continue;
+      const auto& x = *geometries_[g];
+      for (int f : vertex_faces_[u]) {
+        const Triangle& t = tris_[f];
+        const Vec3 r = n[t[0]] + n[t[1]] + n[t[2]];
+        removed += (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]).dot(r) <= 0;
+        if (t[0] == v || t[1] == v || t[2] == v) continue;
+        const int k = t[0] == u ? 0 : t[1] == u ? 1 : 2;
+        const Vec3& a = x[t[(k + 1) % 3]];
+        const Vec3& b = x[t[(k + 2) % 3]];
+        removed -= (a - x[v]).cross(b - x[v]).dot(r - n[u] + n[v]) <= 0;
+      }
+    }
+    return removed;
   }
 
   void push_candidate(int u) {
@@ -183,7 +223,11 @@ class Simplifier {
     const std::vector<int> nu = neighbours(u);
     std::vector<std::pair<double, int>> options;
     for (int v : nu)
-      if (path_allows(u, v)) options.emplace_back(cost(u, v), v);
+      if (path_allows(u, v)) {
+        // Unfolding collapses go first, whatever their quadric error.
+        const int unfolded = options_.reference_normals.empty() ? 0 : folds_removed(u, v);
+        options.emplace_back(unfolded > 0 ? -unfolded : cost(u, v), v);
+      }
     std::sort(options.begin(), options.end());
     for (const auto& [c, v] : options) {
       if (!link_ok(v, nu) || !chords_ok(u, v, nu) || (strict_ && !geometry_ok(u, v))) continue;
