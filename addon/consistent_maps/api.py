@@ -253,7 +253,7 @@ def compute(objects, *, effort=1, seed=1, threads=None, progress=None, restarts=
     that many times (other seeds) and keeps the best run: with few features one run can twist an object's
     map around them. `align` refits every object's map towards the first complete object's (see run()).
     `pair_map`: two objects of genus 0 are mapped onto each other directly, like pairs of genus >= 1 (see
-    run()): no remesh or sphere preview then.
+    run()): no sphere preview then.
 
     Raises ComputeError (invalid input, nothing modified) or Cancelled (progress returned False).
     """
@@ -263,26 +263,49 @@ def compute(objects, *, effort=1, seed=1, threads=None, progress=None, restarts=
                             progress=progress, restarts=restarts, align=align, pair_map=pair_map))
 
 
+def _mapped_directly(obj):
+    return obj.type == 'MESH' and result_state(obj) == results.CURRENT and results.pair_map(obj.data) is not None
+
+
 def _remesh_problems(objects, resolution, scene):
     if not objects:
         return ["The set is empty: select mesh objects and press Add Selected"]
     found = [] if resolution >= 2 and resolution % 2 == 0 else [
         f"The remesh resolution must be even and at least 2, not {resolution}"]
+    paired = [obj for obj in objects if _mapped_directly(obj)]
+    if paired:
+        if len(objects) != 2 or len(paired) != 2:
+            return found + [f"'{obj.name}' is mapped directly onto its partner: remesh the set of those two objects "
+                            f"alone" for obj in paired]
+        return found + maps.problems(objects)
     for obj in objects:
         state = result_state(obj) if obj.type == 'MESH' else results.NONE
-        if state == results.CURRENT and results.pair_map(obj.data) is not None:
-            found += maps.sphere_problems([obj])
-        elif state != results.CURRENT or results.surface(obj.data) is None:
+        if state != results.CURRENT or results.surface(obj.data) is None:
             found.append(f"'{obj.name}' has no {'current ' if state == results.STALE else ''}result: press Compute")
         elif results.set_token(obj.data) != results.set_token(scene):
             found.append(f"'{obj.name}' was not computed with the set last computed here: press Compute")
     return found
 
 
+def _pair_remesh(a, b, resolution):
+    """(native remesh_pair result with 'positions', feature names) of a pair mapped directly."""
+    on_a, on_b = _features.features(a), _features.features(b)
+    shared = [name for name in on_a if name in on_b]
+    to_b, to_a = maps.vertex_landing(a, b), maps.vertex_landing(b, a)
+    pairs = np.array([[on_a[name], on_b[name]] for name in shared], dtype=np.int64).reshape(-1, 2)
+    remeshed = native.remesh_pair(meshdata.arrays(a.data), meshdata.arrays(b.data), (to_b.triangle, to_b.barycentric),
+                                  (to_a.triangle, to_a.barycentric), pairs, resolution * resolution + 2)
+    remeshed["positions"] = [remeshed["a_positions"], remeshed["b_positions"]]
+    return remeshed, shared
+
+
 def remesh(objects, resolution=64, *, threads=None):
-    """Consistent remeshes of computed objects: new objects sharing one connectivity (the octahedral
-    grid of even `resolution`: resolution^2 + 2 vertices), each feature at the same vertex index on
-    all, in the collection "Consistent Maps". The objects are not modified. Returns the new objects."""
+    """Consistent remeshes of computed objects: new objects sharing one connectivity, each feature at the
+    same vertex index on all, in the collection "Consistent Maps". The objects are not modified. A set
+    through the sphere is sampled on its octahedral grid of even `resolution` (resolution^2 + 2 vertices);
+    a pair mapped directly (genus >= 1, or Map the Pair Directly) is simplified to that many vertices, or as
+    far as it goes without folding a triangle: one object's own vertices, and their images on the other
+    (whichever way folds less). Returns the new objects."""
     import bpy
 
     from . import remeshes  # Blender-only, like everything that creates data
@@ -290,11 +313,15 @@ def remesh(objects, resolution=64, *, threads=None):
     found = _remesh_problems(objects, resolution, scene)
     if found:
         raise ComputeError("\n".join(found))
-    locations = results.feature_locations(scene)
-    remeshed = native.consistent_remesh(
-        [results.surface(obj.data) for obj in objects], np.array(list(locations.values()), dtype=float).reshape(-1, 3),
-        resolution, threads=threads or os.cpu_count() or 1)
-    return remeshes.create(scene, objects, remeshed, list(locations))
+    if _mapped_directly(objects[0]):
+        remeshed, names = _pair_remesh(*objects, resolution)
+    else:
+        locations = results.feature_locations(scene)
+        remeshed, names = native.consistent_remesh(
+            [results.surface(obj.data) for obj in objects],
+            np.array(list(locations.values()), dtype=float).reshape(-1, 3), resolution,
+            threads=threads or os.cpu_count() or 1), list(locations)
+    return remeshes.create(scene, objects, remeshed, names)
 
 
 def sphere(obj):

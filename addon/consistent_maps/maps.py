@@ -46,14 +46,6 @@ def check(objects):
         raise MapError("\n".join(found))
 
 
-def sphere_problems(objects):
-    """Which of the (checked) objects have no spherical map, being mapped directly onto a partner."""
-    return [f"'{obj.name}' (genus {genus}) is mapped directly onto its partner, without a sphere: this needs "
-            + ("objects computed onto the sphere (Map the Pair Directly off)" if genus == 0 else "objects of genus 0")
-            for obj, genus in ((o, results.stats(o.data).get('genus', '1 or more')) for o in objects)
-            if results.pair_map(obj.data) is not None]
-
-
 def parameterization(obj):
     """The stored map of a checked object as a mapping.Parameterization."""
     _, refined_triangles, refined_sphere = results.surface(obj.data)

@@ -62,6 +62,14 @@ def consistent_remesh(surfaces, feature_locations, resolution, *, threads):
     return _native.consistent_remesh(surfaces, feature_locations, resolution, threads=threads)
 
 
+def remesh_pair(mesh_a, mesh_b, a_to_b, b_to_a, feature_pairs, target_vertices):
+    """Consistent remeshes of two meshes mapped onto each other: one of them simplified to target_vertices
+    (or as far as it goes without folding a triangle), its vertices' images giving the other's. mesh_*:
+    (vertices, triangles); a_to_b, b_to_a: (triangles, barycentric) of each vertex's image; feature_pairs (k, 2).
+    Dict with 'triangles' (shared), 'a_positions', 'b_positions', 'feature_vertices' (k,), 'folded_triangles'."""
+    return _native.remesh_pair(mesh_a, mesh_b, a_to_b, b_to_a, feature_pairs, target_vertices)
+
+
 def sphere_locator(sphere, triangles):
     """Point location on a parameterization given as a triangulated sphere (covering it once): the object's
     locate(directions, threads=) gives (triangles (q,), barycentric (q, 3)) of each direction."""

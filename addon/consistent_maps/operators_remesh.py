@@ -6,8 +6,9 @@ from .properties import set_objects
 
 
 class CM_OT_remesh(bpy.types.Operator):
-    """Create, for each object of the set, a new object with the common connectivity (octahedral grid),
-    features at identical vertex indices, in the collection "Consistent Maps"; the originals stay as they are"""
+    """Create, for each object of the set, a new object with the common connectivity (the octahedral grid; a pair
+    mapped directly: one of them simplified), features at identical vertex indices, in the collection
+    "Consistent Maps"; the originals stay as they are"""
     bl_idname = "consistent_maps.remesh"
     bl_label = "Consistent Remeshes"
     bl_options = {'REGISTER', 'UNDO'}

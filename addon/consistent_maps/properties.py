@@ -57,10 +57,11 @@ class CM_Settings(bpy.types.PropertyGroup):
                            description="Two objects of genus 0: map them onto each other (through the sphere "
                                        "and directly through a consistent partition, the less distorted kept) "
                                        "instead of onto the common sphere: poses of one shape correspond far "
-                                       "better; no remesh or sphere preview then. Objects with handles are "
+                                       "better; no sphere preview then. Objects with handles are "
                                        "always mapped in pairs")
     resolution: IntProperty(name="Resolution", default=64, min=2, max=1024,
-                            description="Octahedral grid resolution n of the remeshes (even): n² + 2 vertices")
+                            description="Resolution n of the remeshes (even): n² + 2 vertices, on the octahedral grid "
+                                        "(a pair mapped directly: simplified to that many)")
     morph_target: PointerProperty(type=bpy.types.Object, poll=_is_mesh, name="Target",
                                   description="The object whose shape the active object takes")
     morph_align: EnumProperty(name="Align", items=ALIGN_ITEMS, default='features',

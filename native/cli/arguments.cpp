@@ -11,7 +11,7 @@ const char* const kUsage = R"(usage:
                     [--seed N] [--effort 0|1|2] [--threads N] [--json]
   cmaps consistent IN IN ... --features FILE -o DIR [--remesh N] [--grid N] [--first K] [--restarts K]
                    [--align] [--seed N] [--effort 0|1|2] [--threads N] [--json]
-  cmaps intersurface A B [--features FILE] -o DIR [--method auto|sphere|partition] [--optimize R]
+  cmaps intersurface A B [--features FILE] -o DIR [--remesh N] [--method auto|sphere|partition] [--optimize R]
                      [--cross-sweeps N] [--restarts K] [--starts S] [--seed N] [--effort 0|1|2] [--threads N]
                      [--json]
   cmaps transfer SOURCE TARGET [--features FILE] -o OUT.obj [--positions] [--method auto|sphere|partition]
@@ -62,7 +62,11 @@ commands:
            these stop being walls); genus >= 1
            maps also go through the partition with its patches' areas
            balanced, kept when less distorted (as for --method; JSON:
-           balanced_patches, patch_area_ratio).
+           balanced_patches, patch_area_ratio). With --remesh N also
+           DIR/A_remesh.obj and DIR/B_remesh.obj, consistent remeshes of
+           N^2 + 2 vertices sharing one connectivity (one mesh simplified,
+           its vertices' images on the other giving the other's; JSON:
+           remesh_carrier, remesh_folded), and DIR/remesh_features.json.
   transfer map TARGET onto SOURCE as `intersurface` does and write OUT.obj:
            TARGET's faces and vertex order with SOURCE's vertex colours
            ("v x y z r g b") and texture coordinates (vt, per face corner: a
@@ -86,8 +90,11 @@ options:
   --refined-mesh PATH
                      also write OUT's mesh with 3D positions (Steiner vertices
                      on the input surface)
-  --remesh N         consistent remeshes on the octahedral grid of resolution N
-                     (even, 2..4096; N^2 + 2 vertices) and their geometry images
+  --remesh N         consistent: remeshes on the octahedral grid of resolution N
+                     (even, 2..4096; N^2 + 2 vertices) and their geometry images;
+                     intersurface: A and B simplified consistently to N^2 + 2
+                     vertices (or as far as that goes without folding a
+                     triangle): A's vertices or B's, whichever way folds less
   --grid N           octahedral grid resolution of the intermediate remeshes
                      (even, 2..4096; default 64)
   --first K          input seeding the feature locations (default: the first
@@ -227,9 +234,12 @@ Arguments parse(const std::vector<std::string>& args) {
   if (a.positions && a.command != "transfer")
     throw UsageError(a.command + " takes no --positions (only transfer does)");
   if (a.align && a.command != "consistent") throw UsageError(a.command + " takes no --align (only consistent does)");
+  if (a.remesh_given && a.command != "consistent" && a.command != "intersurface")
+    throw UsageError(a.command + " takes no --remesh (only consistent and intersurface do)");
+  if (a.remesh_given && a.remesh % 2 != 0)
+    throw UsageError("--remesh expects an even resolution, got " + std::to_string(a.remesh));
   if (a.command != "consistent") {
-    for (const auto& [option, given] : {std::pair<const char*, bool>{"--remesh", a.remesh_given},
-                                        {"--grid", a.grid_given},
+    for (const auto& [option, given] : {std::pair<const char*, bool>{"--grid", a.grid_given},
                                         {"--first", a.first_given}})
       if (given) throw UsageError(a.command + " takes no " + option + " (only consistent does)");
   }
@@ -237,8 +247,6 @@ Arguments parse(const std::vector<std::string>& args) {
     if (a.inputs.size() < 2)
       throw UsageError("consistent needs at least 2 input meshes, got " + std::to_string(a.inputs.size()));
     if (a.features.empty()) throw UsageError("consistent needs --features FILE (see cmaps --help)");
-    if (a.remesh_given && a.remesh % 2 != 0)
-      throw UsageError("--remesh expects an even resolution, got " + std::to_string(a.remesh));
     if (a.grid % 2 != 0) throw UsageError("--grid expects an even resolution, got " + std::to_string(a.grid));
     if (a.first_given && a.first >= int(a.inputs.size()))
       throw UsageError("--first " + std::to_string(a.first) + " is out of range (" + std::to_string(a.inputs.size()) +

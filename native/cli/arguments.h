@@ -23,7 +23,8 @@ struct Arguments {
   std::string command, input, output;
   std::vector<std::string> inputs;              // consistent: every input; otherwise just `input`
   std::string features, targets, refined_mesh;  // constrained only (features: consistent too)
-  int remesh = 0, grid = 64, first = -1;        // consistent only
+  int remesh = 0;                               // consistent and intersurface
+  int grid = 64, first = -1;                    // consistent only
   bool remesh_given = false, grid_given = false, first_given = false;
   // optimize, cross_sweeps, starts: intersurface and transfer only, defaults the library's
   int optimize = cmaps::IntersurfaceOptions{}.optimize_rounds, restarts = 1,

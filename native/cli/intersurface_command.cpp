@@ -2,11 +2,13 @@
 // written as surface points both ways and as each mesh mapped onto the other.
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include "command_io.h"
 #include "commands.h"
 #include "consistent_maps/errors.h"
 #include "consistent_maps/mesh_io.h"
+#include "consistent_maps/pair_remesh.h"
 #include "intersurface_common.h"
 
 namespace cmaps::cli {
@@ -26,6 +28,15 @@ std::string surface_points_text(const std::vector<cmaps::SurfacePoint>& points) 
   return text;
 }
 
+// remesh_features.json: each pair's remesh vertex, by its name in the
+// features file (the map's added pairs as "added <k>").
+std::string remesh_features_text(const std::vector<std::string>& names, const cmaps::PairRemesh& remesh) {
+  JsonObject vertices;
+  for (std::size_t k = 0; k < remesh.feature_vertices.size(); ++k)
+    vertices.add(k < names.size() ? names[k] : "added " + std::to_string(k - names.size()), remesh.feature_vertices[k]);
+  return vertices.str();
+}
+
 }  // namespace
 
 void run_intersurface(const Arguments& args, Outcome& out) {
@@ -35,7 +46,8 @@ void run_intersurface(const Arguments& args, Outcome& out) {
   const cmaps::TriangleMesh a = cmaps::read_mesh(args.inputs[0]);
   const cmaps::TriangleMesh b = cmaps::read_mesh(args.inputs[1]);
   out.faces_per_input = JsonObject::array(std::vector<int>{int(a.triangles.size()), int(b.triangles.size())});
-  const std::vector<cmaps::FeaturePair> features = read_feature_pairs(args, a, b);
+  std::vector<std::string> names;
+  const std::vector<cmaps::FeaturePair> features = read_feature_pairs(args, a, b, &names);
   out.feature_count = int(features.size());
 
   const cmaps::IntersurfaceOptions options = intersurface_options(args);
@@ -48,17 +60,32 @@ void run_intersurface(const Arguments& args, Outcome& out) {
                        " and " + std::to_string(result.b_to_a.size()) + " images for " +
                        std::to_string(a.vertices.size()) + " and " + std::to_string(b.vertices.size()) + " vertices");
 
+  std::optional<cmaps::PairRemesh> remesh;
+  if (args.remesh_given)
+    remesh = cmaps::remesh_pair(a, b, result.a_to_b, result.b_to_a, result.features, args.remesh * args.remesh + 2);
+
   namespace fs = std::filesystem;
   std::error_code error;
   fs::create_directories(args.output, error);
   if (error) throw cmaps::IoError("cannot create '" + args.output + "': " + error.message());
   const auto path = [&](const char* name) { return (fs::path(args.output) / name).string(); };
-  const std::vector<std::string> outputs{path("A_to_B.txt"), path("B_to_A.txt"), path("A_on_B.obj"),
-                                         path("B_on_A.obj")};
+  std::vector<std::string> outputs{path("A_to_B.txt"), path("B_to_A.txt"), path("A_on_B.obj"), path("B_on_A.obj")};
   write_text(outputs[0], surface_points_text(result.a_to_b));
   write_text(outputs[1], surface_points_text(result.b_to_a));
   cmaps::write_mesh(outputs[2], cmaps::TriangleMesh{result.a_on_b, a.triangles});
   cmaps::write_mesh(outputs[3], cmaps::TriangleMesh{result.b_on_a, b.triangles});
+  if (remesh) {
+    outputs.insert(outputs.end(), {path("A_remesh.obj"), path("B_remesh.obj"), path("remesh_features.json")});
+    cmaps::write_mesh(outputs[4], cmaps::TriangleMesh{remesh->a_positions, remesh->triangles});
+    cmaps::write_mesh(outputs[5], cmaps::TriangleMesh{remesh->b_positions, remesh->triangles});
+    write_text(outputs[6], remesh_features_text(names, *remesh));
+    out.json.add("remesh", args.remesh)
+        .add("remesh_vertices", int(remesh->carrier_vertex.size()))
+        .add("remesh_carrier", remesh->b_carries ? "B" : "A")
+        .add("remesh_folded", remesh->folded_triangles);
+  } else {
+    out.json.null("remesh").null("remesh_vertices").null("remesh_carrier").null("remesh_folded");
+  }
 
   report_map(result, features.size(), false, out);
   const cmaps::MapDistortion &ab = result.distortion_a_to_b, &ba = result.distortion_b_to_a;
@@ -102,6 +129,10 @@ void run_intersurface(const Arguments& args, Outcome& out) {
                 result.features.size(), result.added_features, ab.symmetric_dirichlet, ba.symmetric_dirichlet,
                 result.map_flipped, ab.flipped, ba.flipped, result.steiner_a, result.steiner_b);
   out.summary = "wrote " + std::to_string(outputs.size()) + " files to " + args.output + ": " + line;
+  if (remesh)
+    out.summary += "; remeshes of " + std::to_string(remesh->carrier_vertex.size()) + " vertices (" +
+                   (remesh->b_carries ? "B" : "A") + "'s), " + std::to_string(remesh->folded_triangles) +
+                   " triangles folded";
 }
 
 }  // namespace cmaps::cli

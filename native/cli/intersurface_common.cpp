@@ -11,7 +11,7 @@
 namespace cmaps::cli {
 
 std::vector<cmaps::FeaturePair> read_feature_pairs(const Arguments& args, const cmaps::TriangleMesh& a,
-                                                   const cmaps::TriangleMesh& b) {
+                                                   const cmaps::TriangleMesh& b, std::vector<std::string>* names) {
   if (args.features.empty()) return {};
   std::vector<cmaps::FeaturePair> pairs;
   std::map<int, std::string> seen[2];
@@ -32,6 +32,7 @@ std::vector<cmaps::FeaturePair> read_feature_pairs(const Arguments& args, const 
                                   " are both vertex " + std::to_string(v) + " of " + path);
     }
     pairs.push_back({vertices[0], vertices[1]});
+    if (names) names->push_back(name);
   }
   return pairs;
 }

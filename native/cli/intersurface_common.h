@@ -2,6 +2,7 @@
 // alike, the map reported alike.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "arguments.h"
@@ -12,9 +13,11 @@ namespace cmaps::cli {
 
 // Feature pairs of `intersurface`: {"name": [index_in_A, index_in_B], ...},
 // every name with a vertex on both meshes; ranges and repeats are checked by
-// the library (by pair index), here with the name.
+// the library (by pair index), here with the name. `names`, when given,
+// receives each pair's name.
 std::vector<cmaps::FeaturePair> read_feature_pairs(const Arguments& args, const cmaps::TriangleMesh& a,
-                                                   const cmaps::TriangleMesh& b);
+                                                   const cmaps::TriangleMesh& b,
+                                                   std::vector<std::string>* names = nullptr);
 
 // Options of the inter-surface map shared by intersurface and transfer.
 cmaps::IntersurfaceOptions intersurface_options(const Arguments& args);

@@ -7,7 +7,7 @@ Run by run_tests.py after test_maps.py.
 import bpy
 import numpy as np
 
-from consistent_maps import api, maps, meshdata, operators_compute
+from consistent_maps import api, maps, meshdata, native, operators_compute
 from consistent_maps.transfer import corner_normals
 import test_addon
 from test_addon import SHARED, BALL, expect_error, load, make_set, snapshot
@@ -195,10 +195,72 @@ def test_pair_with_holes_maps_rims_onto_rims():
     assert (_rim_distance(shape[on_rim], b.data) < 1e-5 * _diagonal(truth)).all()
 
 
+def _remeshes(originals, vertices):
+    """The remeshes the last Remesh made of the originals (in the collection "Consistent Maps"), after checking
+    that they share one connectivity of `vertices` vertices and carry the originals' transforms. Returns
+    [(object, (n, 3) positions)] in the originals' order."""
+    found = [bpy.data.objects[f"{obj.name} remesh"] for obj in originals]
+    polygons = [[tuple(p.vertices) for p in remesh.data.polygons] for remesh in found]
+    assert all(p == polygons[0] for p in polygons) and len(found[0].data.vertices) == vertices
+    for remesh, obj in zip(found, originals):
+        assert remesh.users_collection[0].name == "Consistent Maps" and remesh.matrix_world == obj.matrix_world
+    return [(remesh, maps.positions(remesh.data)) for remesh in found]
+
+
+def _normals(points, obj):
+    """Per loop triangle of obj: its normal (unnormalized) with its vertices at points."""
+    triangles = meshdata.loop_triangles(obj.data)[0]
+    corners = points[triangles]
+    return np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+
+
+def _centroids(points, obj):
+    return points[meshdata.loop_triangles(obj.data)[0]].mean(axis=1)
+
+
+def _exact_vertices(points, obj):
+    """Per point: the index of the vertex of obj at exactly that position, -1 where none is."""
+    index = {tuple(co): v for v, co in enumerate(maps.positions(obj.data).astype(np.float32))}
+    return np.array([index.get(tuple(p), -1) for p in points.astype(np.float32)])
+
+
+def test_pair_remeshes_share_one_connectivity():
+    """Remesh of a pair mapped directly (genus 1): one mesh simplified to n^2 + 2 vertices, its vertices' images
+    giving the other's: the two remeshes share one connectivity (a torus still), each lies on its own
+    original (one's vertices are its original's, the other's on its original's surface), features at
+    identical indices, few triangles folded; the originals stay as they were."""
+    a, b = _tori(features=3)
+    before = [snapshot(a), snapshot(b)]
+    bpy.context.scene.consistent_maps.resolution = 16
+    assert bpy.ops.consistent_maps.remesh() == {'FINISHED'}
+    (ra, pa), (rb, pb) = _remeshes([a, b], 258)
+    assert len(ra.data.polygons) == 2 * 258  # V - E + F = 0: a torus
+    exact = [_exact_vertices(pa, a), _exact_vertices(pb, b)]
+    assert max((e >= 0).mean() for e in exact) == 1.0, "one remesh's vertices are all its original's"
+    for obj, points in ((a, pa), (b, pb)):
+        _, _, distances = native.surface_locator(*meshdata.arrays(obj.data)).locate(points)
+        assert distances.max() < 1e-5 * _diagonal(maps.positions(obj.data)), obj.name
+    for name, vertex in api.features(a).items():
+        assert api.features(ra)[name] == api.features(rb)[name]
+        assert np.allclose(pa[api.features(ra)[name]], maps.positions(a.data)[vertex], atol=1e-6)
+        assert np.allclose(pb[api.features(rb)[name]], maps.positions(b.data)[api.features(b)[name]], atol=1e-5)
+    folded = 0
+    for remesh, points, obj in ((ra, pa, a), (rb, pb, b)):
+        vertices, triangles = meshdata.arrays(obj.data)
+        found, _, _ = native.surface_locator(vertices, triangles).locate(_centroids(points, remesh))
+        folded += ((_normals(points, remesh) * _normals(vertices, obj)[found]).sum(axis=1) < 0).sum()
+    print(f"  torus pair remeshed to 258 vertices: {folded} triangles folded")
+    assert folded <= 5
+    assert [snapshot(a), snapshot(b)] == before
+    # A pair in a set with a third object: remesh the two alone.
+    ball = load(BALL, "Ball", location=(-4, 0, 0))
+    make_set([a, b, ball])
+    expect_error(bpy.ops.consistent_maps.remesh, "remesh the set of those two objects alone")
+
+
 def test_pair_refuses_what_needs_a_sphere_and_mismatched_sets():
     a, b = _tori(features=3)
     before = [snapshot(a), snapshot(b)]
-    expect_error(bpy.ops.consistent_maps.remesh, "without a sphere")
     bpy.context.view_layer.objects.active = a
     expect_error(bpy.ops.consistent_maps.sphere_preview, "no sphere to show", show=True)
     assert [snapshot(a), snapshot(b)] == before
@@ -243,7 +305,19 @@ def test_pair_of_genus_zero_maps_directly_when_asked():
     error = np.linalg.norm(shape - truth, axis=1).mean() / _diagonal(truth)
     print(f"cactus pose 0 -> 1 mapped directly, 8 features: mean error {error:.4f} of the diagonal")
     assert error < 0.012
-    expect_error(bpy.ops.consistent_maps.remesh, "Map the Pair Directly off")
+    expect_error(bpy.ops.consistent_maps.sphere_preview, "no sphere to show", show=True)
+    # Remesh goes through the pair's map: the images follow the truth as the map does.
+    settings.resolution = 24
+    assert bpy.ops.consistent_maps.remesh() == {'FINISHED'}
+    (_, pa), (_, pb) = _remeshes([a, b], 24 * 24 + 2)
+    exact = [_exact_vertices(pa, a), _exact_vertices(pb, b)]
+    carried = 0 if (exact[0] >= 0).all() else 1
+    assert (exact[carried] >= 0).all()
+    images = (pb, pa)[carried]
+    truth = maps.positions((b, a)[carried].data)[exact[carried]]
+    remesh_error = np.linalg.norm(images - truth, axis=1).mean() / _diagonal(truth)
+    print(f"  cactus pair remeshed to {len(pa)} vertices: images {remesh_error:.4f} of the diagonal from the truth")
+    assert remesh_error < 0.015
 
 
 def _torus_uv(mesh):

@@ -59,7 +59,8 @@ int folded_on(const TriangleMesh& surface, const std::vector<Vec3>& x, const std
   const std::vector<Vec3> normals = vertex_normals(surface);
   int folded = 0;
   for (const Triangle& t : triangles) {
-    const Vec3 reference = normals[surface_vertex[t[0]]] + normals[surface_vertex[t[1]]] + normals[surface_vertex[t[2]]];
+    Vec3 reference = Vec3::Zero();
+    for (int v : t) reference += normals[surface_vertex[v]];
     folded += (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]).dot(reference) <= 0;
   }
   return folded;
@@ -85,7 +86,8 @@ TEST(PairRemesh, BothSurfacesShareOneConnectivityAndKeepTheirGenus) {
   EXPECT_EQ(std::set<int>(remesh.carrier_vertex.begin(), remesh.carrier_vertex.end()).size(), 500u);
   const auto& carrier = remesh.b_carries ? copy.partner : torus;
   for (std::size_t v = 0; v < 500; ++v) {
-    EXPECT_EQ(remesh.b_carries ? remesh.b_positions[v] : remesh.a_positions[v], carrier.vertices[remesh.carrier_vertex[v]]);
+    const Vec3& own = remesh.b_carries ? remesh.b_positions[v] : remesh.a_positions[v];
+    EXPECT_EQ(own, carrier.vertices[remesh.carrier_vertex[v]]);
     EXPECT_LT((remesh.b_positions[v] - copy.place(remesh.a_positions[v])).norm(), 1e-12);
   }
   for (std::size_t k = 0; k < features.size(); ++k)

@@ -406,7 +406,7 @@ def test_cli_remeshes_and_geometry_images(native, cli, meshes, features):
     ("first out of range", "--first 4 is out of range"),
     ("no features", "consistent needs --features FILE"),
     ("targets", "consistent takes no --targets"),
-    ("remesh elsewhere", "sphere takes no --remesh (only consistent does)"),
+    ("remesh elsewhere", "sphere takes no --remesh (only consistent and intersurface do)"),
 ])
 def test_cli_rejects_bad_input(cmaps_binary, tmp_path, features, case, reason):
     table = features.copy()

@@ -324,9 +324,12 @@ def read_obj_vertices(path):
     return np.array([line.split()[1:4] for line in open(path) if line.startswith("v ")], dtype=float)
 
 
-def expect_written_maps(out, a, b):
-    """The four files of `cmaps intersurface`: valid images both ways, positions interpolated from them."""
-    assert sorted(p.name for p in out.iterdir()) == ["A_on_B.obj", "A_to_B.txt", "B_on_A.obj", "B_to_A.txt"]
+def expect_written_maps(out, a, b, remeshes=False):
+    """The four files of `cmaps intersurface` (with --remesh three more): valid images both ways, positions
+    interpolated from them."""
+    extra = ["A_remesh.obj", "B_remesh.obj", "remesh_features.json"] if remeshes else []
+    assert sorted(p.name for p in out.iterdir()) == sorted(["A_on_B.obj", "A_to_B.txt", "B_on_A.obj", "B_to_A.txt",
+                                                             *extra])
     for name, source, target in (("A", a, b), ("B", b, a)):
         other = "B" if name == "A" else "A"
         triangles, weights = read_points(out / f"{name}_to_{other}.txt")
@@ -430,6 +433,11 @@ def test_cli_usage(cmaps_binary, tmp_path):
     assert result.returncode == 2 and "consistent takes no --method (only intersurface and transfer do)" in result.stderr
     result = run(cmaps_binary, "intersurface", TORUS, TORUS, "-o", tmp_path / "out", "--method", "sphere")
     assert result.returncode == 1 and "the sphere method maps genus-0 pairs only; A and B have genus 1" in result.stderr
+    result = run(cmaps_binary, "intersurface", SPOT, SPHERE, "-o", tmp_path / "out", "--remesh", "5")
+    assert result.returncode == 2 and "--remesh expects an even resolution, got 5" in result.stderr
+    result = run(cmaps_binary, "transfer", SPOT, SPHERE, "-o", tmp_path / "t.obj", "--remesh", "4")
+    assert result.returncode == 2 and "transfer takes no --remesh (only consistent and intersurface do)" \
+        in result.stderr
 
 
 def test_continue_across_seams(native):
@@ -454,15 +462,28 @@ def test_cli_genus_one(cmaps_binary, native, tmp_path):
     features = tmp_path / "features.json"
     features.write_text(json.dumps({"one": [0, 7], "two": [1000, 500]}))
     out = tmp_path / "maps"
-    result = run(cmaps_binary, "intersurface", TORUS, KNOT, "--features", features, "-o", out, "--json")
+    result = run(cmaps_binary, "intersurface", TORUS, KNOT, "--features", features, "-o", out, "--remesh", 16,
+                 "--json")
     assert result.returncode == 0, result.stderr
     report = json.loads(result.stdout)
     assert report["error"] is None and report["genus"] == 1 and report["features"] == 2
     assert report["base_triangles"] > 0 and report["seconds_partition"] > 0 and report["map_flipped"] == 0
     assert report["patch_area_ratio"] >= 1 and report["balanced_patches"] in (True, False)
-    expect_written_maps(out, a, b)
+    expect_written_maps(out, a, b, remeshes=True)
     triangles, weights = read_points(out / "A_to_B.txt")
     assert weights[1000][list(b[1][triangles[1000]]).index(500)] == 1  # the given pair maps exactly
+    # --remesh 16: both meshes simplified consistently to 16^2 + 2 vertices, the pairs at one index
+    remeshes = [native.read_mesh(str(out / f"{k}_remesh.obj")) for k in "AB"]
+    assert all(len(v) == 258 for v, _ in remeshes) and (remeshes[0][1] == remeshes[1][1]).all()
+    vertices = json.loads((out / "remesh_features.json").read_text())
+    assert list(vertices)[:2] == ["one", "two"]
+    assert len(set(vertices.values())) == len(vertices) == report["features"] + len(report["added_features"])
+    for name, (on_a, on_b) in (("one", (0, 7)), ("two", (1000, 500))):
+        assert np.abs(remeshes[0][0][vertices[name]] - a[0][on_a]).max() < 1e-6
+        assert np.abs(remeshes[1][0][vertices[name]] - b[0][on_b]).max() < 1e-6
+    assert report["remesh"] == 16 and report["remesh_vertices"] == 258 and report["remesh_carrier"] in ("A", "B")
+    assert 0 <= report["remesh_folded"] < min(report["flipped"]) / 4, report
+    assert str(out / "A_remesh.obj") in report["outputs"]
 
 
 def test_remesh_pair(native):
@@ -479,7 +500,8 @@ def test_remesh_pair(native):
     assert (remesh[f"{own}_positions"] == carrier[remesh["carrier_vertex"]]).all()
     assert np.abs(remesh[f"{other}_positions"] - r[image][remesh["carrier_vertex"]]).max() < 1e-12
     feature = remesh["feature_vertices"][0]
-    assert (remesh["a_positions"][feature] == a[0][0]).all() and np.abs(remesh["b_positions"][feature] - b[0][7]).max() < 1e-12
+    assert (remesh["a_positions"][feature] == a[0][0]).all()
+    assert np.abs(remesh["b_positions"][feature] - b[0][7]).max() < 1e-12
     assert remesh["folded_triangles"] < min(r["flipped"]) / 4, (remesh["folded_triangles"], r["flipped"])
     with pytest.raises(native.InvalidMeshError, match="feature vertex 5000 out of range"):
         native.remesh_pair(a, b, a_to_b, b_to_a, [[5000, 7]], 600)

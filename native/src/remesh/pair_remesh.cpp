@@ -132,8 +132,10 @@ PairRemesh remesh_pair(const TriangleMesh& a, const TriangleMesh& b, const std::
                        int target_vertices) {
   require_images(a_on_b, a, "A");
   require_images(b_on_a, b, "B");
-  if (target_vertices < 4) throw InvalidInput("a remesh needs at least 4 vertices, not " + std::to_string(target_vertices));
-  const std::vector<int> features_a = feature_vertices(features, a, false), features_b = feature_vertices(features, b, true);
+  if (target_vertices < 4)
+    throw InvalidInput("a remesh needs at least 4 vertices, not " + std::to_string(target_vertices));
+  const std::vector<int> features_a = feature_vertices(features, a, false);
+  const std::vector<int> features_b = feature_vertices(features, b, true);
   require_pair_map_topology(a);
   require_pair_map_topology(b);
   PairRemesh by_a, by_b;
