@@ -38,6 +38,7 @@ SOURCE, TARGET = "spot", "penguin"
 PAIR_SOURCE, PAIR_TARGET = "kitten", "torus"  # genus 1: kitten.off, torus.obj
 FEATURES = ROOT / "examples" / "spot_penguin_features.json"  # name -> [vertex on SOURCE, vertex on TARGET]
 FRAMES, COLUMNS, CELL = 24, 6, 160
+PAIR_REMESH = 24  # the pair's remeshes: 24^2 + 2 vertices
 TEXTURE_SIZE, BAKE_SIZE = 1024, 1024
 
 args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
@@ -338,4 +339,20 @@ pair_target.hide_render = True
 render_morph(pair_source, OUT / "pair_morph_contact_sheet.png")
 t = step(f"saved {blend}; rendered {OUT / 'colour_transfer.png'} ({PAIR_SOURCE} and {PAIR_TARGET} with the "
          f"carried colours) and {OUT / 'pair_morph_contact_sheet.png'}", t)
+
+# Consistent remeshes of the pair, through its map: one connectivity on both, drawn as wireframes.
+scene.frame_set(1)
+remeshes = api.remesh([pair_source, pair_target], PAIR_REMESH)
+for obj in (pair_source, pair_target):
+    obj.hide_render = True
+for obj in remeshes:
+    co = np.array([v.co[:] for v in obj.data.vertices])
+    edges = np.array([e.vertices[:] for e in obj.data.edges])
+    obj.modifiers.new("Wireframe", 'WIREFRAME').thickness = 0.05 * np.linalg.norm(co[edges[:, 0]] - co[edges[:, 1]],
+                                                                                   axis=1).mean()
+use_workbench('SINGLE')
+camera_on(remeshes, 2 / 1)
+save_png(render(640, 320), OUT / "pair_remeshes.png")
+t = step(f"consistent remeshes of {PAIR_SOURCE} and {PAIR_TARGET}, {len(remeshes[0].data.vertices)} vertices each, one "
+         f"connectivity ({len(remeshes[0].data.polygons)} triangles); rendered {OUT / 'pair_remeshes.png'}", t)
 step("done", START)

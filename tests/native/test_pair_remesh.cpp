@@ -197,6 +197,13 @@ TEST(PairRemesh, BadInputIsRefusedWithItsReason) {
   EXPECT_THROW(remesh_pair(torus, copy.partner, copy.image, copy.back, {{int(torus.vertices.size()), 0}}, 100),
                InvalidInput);
   EXPECT_THROW(remesh_pair(torus, copy.partner, copy.image, copy.back, {{0, -1}}, 100), InvalidInput);
+  TriangleMesh loose = torus;
+  loose.vertices.push_back({9, 9, 9});  // used by no triangle: dropped, but no feature
+  std::vector<SurfacePoint> loose_image = copy.image;
+  loose_image.push_back(copy.image[0]);
+  EXPECT_EQ(remesh_pair(loose, copy.partner, loose_image, copy.back, {}, 100).carrier_vertex.size(), 100u);
+  EXPECT_THROW(remesh_pair(loose, copy.partner, loose_image, copy.back, {{int(torus.vertices.size()), 0}}, 100),
+               InvalidInput);
   std::vector<SurfacePoint> off = copy.image;
   off[5].triangle = int(copy.partner.triangles.size());
   try {

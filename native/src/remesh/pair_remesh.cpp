@@ -106,14 +106,20 @@ PairRemesh remesh_carried(const TriangleMesh& carrier, const TriangleMesh& partn
   return remesh;
 }
 
-// Which mesh's vertex each pair names (A's or B's), range-checked.
+// Which mesh's vertex each pair names (A's or B's), checked: in range and used by a triangle.
 std::vector<int> feature_vertices(const std::vector<FeaturePair>& features, const TriangleMesh& mesh, bool of_b) {
+  std::vector<char> used(mesh.vertices.size(), 0);
+  for (const Triangle& t : mesh.triangles)
+    for (int v : t)
+      if (v >= 0 && v < int(used.size())) used[v] = 1;
+  const std::string name = of_b ? "B" : "A";
   std::vector<int> vertices;
   for (const FeaturePair& p : features) {
     const int v = of_b ? p.b : p.a;
     if (v < 0 || v >= int(mesh.vertices.size()))
-      throw InvalidInput(std::string("feature vertex ") + std::to_string(v) + " out of range (" + (of_b ? "B" : "A") +
-                         " has " + std::to_string(mesh.vertices.size()) + " vertices)");
+      throw InvalidInput("feature vertex " + std::to_string(v) + " out of range (" + name + " has " +
+                         std::to_string(mesh.vertices.size()) + " vertices)");
+    if (!used[v]) throw InvalidInput("feature vertex " + std::to_string(v) + " of " + name + " is in no triangle");
     vertices.push_back(v);
   }
   return vertices;
