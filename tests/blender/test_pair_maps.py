@@ -252,6 +252,9 @@ def test_pair_remeshes_share_one_connectivity():
     print(f"  torus pair remeshed to 258 vertices: {folded} triangles folded")
     assert folded <= 5
     assert [snapshot(a), snapshot(b)] == before
+    # One connectivity: the remeshes blend into each other by a shape key.
+    blend = api.blend([ra, rb])
+    assert np.allclose(_get(blend.data.shape_keys.key_blocks[f"→ {rb.name}"].data, "co", 3), pb, atol=1e-6)
     # A pair in a set with a third object: remesh the two alone.
     ball = load(BALL, "Ball", location=(-4, 0, 0))
     make_set([a, b, ball])
