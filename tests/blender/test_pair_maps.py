@@ -158,14 +158,19 @@ def _cut_holes(obj, vertices):
     obj.data.update()
 
 
-def _rim_distance(points, mesh):
-    """Per point: its distance to the nearest boundary edge of the mesh."""
-    co = maps.positions(mesh)
+def _edge_faces(mesh):
+    """{edge key: how many faces share it}."""
     faces_per_edge = {}
     for polygon in mesh.polygons:
         for key in polygon.edge_keys:
             faces_per_edge[key] = faces_per_edge.get(key, 0) + 1
-    rim = np.array([key for key, count in faces_per_edge.items() if count == 1], int)
+    return faces_per_edge
+
+
+def _rim_distance(points, mesh):
+    """Per point: its distance to the nearest boundary edge of the mesh."""
+    co = maps.positions(mesh)
+    rim = np.array([key for key, count in _edge_faces(mesh).items() if count == 1], int)
     start, direction = co[rim[:, 0]], co[rim[:, 1]] - co[rim[:, 0]]
     t = np.clip(((points[:, None] - start[None]) * direction[None]).sum(-1) / (direction ** 2).sum(-1)[None], 0, 1)
     return np.linalg.norm(points[:, None] - (start[None] + t[..., None] * direction[None]), axis=-1).min(axis=1)
@@ -193,6 +198,12 @@ def test_pair_with_holes_maps_rims_onto_rims():
     on_rim = _rim_distance(maps.positions(a.data), a.data) < 1e-9
     assert on_rim.sum() == 12  # two rings of 6
     assert (_rim_distance(shape[on_rim], b.data) < 1e-5 * _diagonal(truth)).all()
+    # Remeshed through the map, both keep the two holes, their rims on the originals' rims.
+    for remesh, obj in zip(api.remesh([a, b], 16), (a, b)):
+        co = maps.positions(remesh.data)
+        rim = np.unique([key for key, count in _edge_faces(remesh.data).items() if count == 1])
+        assert len(rim) >= 6 and (_rim_distance(co[rim], obj.data) < 1e-5 * _diagonal(truth)).all(), remesh.name
+        assert len(co) - len(_edge_faces(remesh.data)) + len(remesh.data.polygons) == -2  # genus 1, 2 holes
 
 
 def _remeshes(originals, vertices):
