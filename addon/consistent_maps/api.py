@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import features as _features
-from . import blends, connectivity, maps, meshdata, morphs, native, preview, results
+from . import blends, connectivity, maps, meshdata, morphs, native, preview, results, topology
 from . import pca as _pca
 
 
@@ -104,13 +104,6 @@ def _object_problems(objects):
     return found
 
 
-def _mesh_problem(name, report):
-    hint = ""
-    if not report["manifold"]:
-        hint = " (Select > Select All by Trait > Non Manifold shows where)"
-    return f"'{name}': {report['sphere_error']}{hint}"
-
-
 def prepare(objects, pair_map=False):
     """Validates the objects and copies their meshes out; raises ComputeError listing every problem.
     Two objects of genus >= 1, or of genus 0 with `pair_map`, are mapped onto each other (see run())."""
@@ -125,26 +118,12 @@ def prepare(objects, pair_map=False):
         reports.append(native.check_mesh(arrays.vertices, arrays.triangles))
         placed = _features.features(obj)
         tasks.append(Task(obj.name, arrays, [placed.get(name, -1) for name in names], reports[-1]["genus"]))
-    handled = [_has_handles(r) for r in reports]
-    pair = len(objects) == 2 and (all(handled) or pair_map and reports[0]["genus"] == reports[1]["genus"] == 0)
-    if pair and reports[0]["genus"] != reports[1]["genus"]:
-        found.append(f"'{objects[0].name}' has genus {reports[0]['genus']} and '{objects[1].name}' genus "
-                     f"{reports[1]['genus']}: objects with handles are mapped in pairs of equal genus")
-    for obj, report, handles in zip(objects, reports, handled):
-        if report["sphere_error"] and not pair:
-            hint = (" (two objects of equal genus can be mapped onto each other: make a set of just those two)"
-                    if handles else "")
-            found.append(_mesh_problem(obj.name, report) + hint)
+    found += topology.problems([obj.name for obj in objects], reports, pair_map)
+    pair = topology.is_pair(reports, pair_map)
     found += _features.problems(objects, minimum=0 if pair else _features.MIN_SHARED)
     if found:
         raise ComputeError("\n".join(found))
     return tasks
-
-
-def _has_handles(report):
-    """Whether a mesh is one clean surface of genus >= 1, closed or with holes (mapped onto a partner directly)."""
-    return (report["genus"] >= 1 and report["manifold"] and report["components"] == 1
-            and report["referenced_vertices"] == report["vertices"] and report["degenerate_faces"] == 0)
 
 
 def feature_names(objects):

@@ -12,7 +12,8 @@ Cancelled = _native.Cancelled
 
 
 def check_mesh(vertices, triangles):
-    """Topology report of a triangle mesh (dict); 'sphere_error' is None when it can be mapped."""
+    """Topology report of a triangle mesh (dict); 'sphere_error' is None when it can be mapped to the sphere,
+    'pair_map_error' when it can be mapped onto a partner of its genus."""
     return _native.check_mesh(vertices, triangles)
 
 

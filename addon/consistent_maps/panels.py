@@ -2,7 +2,7 @@
 transfers."""
 import bpy
 
-from . import features, job, operators_transfer, results, status
+from . import features, job, operators_transfer, results, status, topology
 from .properties import set_objects
 
 CATEGORY = "Consistent Maps"
@@ -62,7 +62,7 @@ class CM_PT_main(_Panel, bpy.types.Panel):
         if 0 <= settings.active_member < len(settings.members) and settings.members[settings.active_member].object:
             _draw_status(self.layout.box(), settings.members[settings.active_member].object,
                          set_objects(context.scene))
-        _draw_problems(self.layout, set_objects(context.scene))
+        _draw_problems(self.layout, set_objects(context.scene), settings.pair_map)
 
 
 def _draw_status(layout, obj, objects):
@@ -82,10 +82,11 @@ def _draw_status(layout, obj, objects):
     column.label(text=RESULT_TEXT[s.result].capitalize(), icon=RESULT_ICONS[s.result])
 
 
-def _draw_problems(layout, objects):
-    errors = [(obj.name, status.of(obj).sphere_error) for obj in objects]
-    lines = [f"'{name}': {error}" for name, error in errors if error]
-    lines += features.problems(objects)
+def _draw_problems(layout, objects, pair_map):
+    """What Compute would refuse, as it would say it."""
+    reports = [status.of(obj).report for obj in objects]
+    lines = topology.problems([obj.name for obj in objects], reports, pair_map)
+    lines += features.problems(objects, minimum=0 if topology.is_pair(reports, pair_map) else features.MIN_SHARED)
     if not lines:
         return
     box = layout.box()

@@ -17,7 +17,7 @@ class Status:
     triangles: int
     genus: int
     manifold: bool
-    sphere_error: str  # "" when the mesh can be mapped to the sphere
+    report: dict  # native.check_mesh's (topology.problems reads it)
     placed: list = field(default_factory=list)      # feature names with one vertex
     unplaced: list = field(default_factory=list)    # names with no vertex yet
     ambiguous: list = field(default_factory=list)   # names with several vertices
@@ -40,7 +40,7 @@ def of(obj):
         triangles=report["faces"],
         genus=report["genus"],
         manifold=report["manifold"],
-        sphere_error=report["sphere_error"] or "",
+        report=report,
         placed=[n for n, v in members.items() if len(v) == 1],
         unplaced=[n for n, v in members.items() if not v],
         ambiguous=[n for n, v in members.items() if len(v) > 1],

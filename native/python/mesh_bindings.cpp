@@ -54,18 +54,25 @@ py::tuple read_mesh(const std::filesystem::path& path) {
 py::dict check_mesh(const py::handle& vertices, const py::handle& triangles) {
   const cmaps::TriangleMesh mesh = to_mesh(vertices, triangles);
   cmaps::MeshReport report;
-  std::optional<std::string> problem;
+  std::optional<std::string> sphere_problem, pair_problem;
   {
     py::gil_scoped_release release;
     report = cmaps::check_mesh(mesh);
-    try {
-      cmaps::require_sphere_topology(mesh);
-    } catch (const cmaps::InvalidInput& e) {
-      problem = e.what();
-    }
+    const auto reason = [&mesh](auto require) -> std::optional<std::string> {
+      try {
+        require(mesh);
+      } catch (const cmaps::InvalidInput& e) {
+        return e.what();
+      }
+      return std::nullopt;
+    };
+    sphere_problem = reason([](const cmaps::TriangleMesh& m) { cmaps::require_sphere_topology(m); });
+    pair_problem = reason([](const cmaps::TriangleMesh& m) { cmaps::require_pair_map_topology(m); });
   }
+  const auto text = [](const std::optional<std::string>& s) { return s ? py::object(py::str(*s)) : py::none(); };
   py::dict d = report_dict(report);
-  d["sphere_error"] = problem ? py::object(py::str(*problem)) : py::object(py::none());
+  d["sphere_error"] = text(sphere_problem);
+  d["pair_map_error"] = text(pair_problem);
   return d;
 }
 
@@ -87,7 +94,8 @@ void bind_mesh(py::module_& m) {
         "polygons are fan-triangulated. Raises FileNotFoundError or MeshIOError.");
   m.def("check_mesh", &check_mesh, py::arg("vertices"), py::arg("triangles"),
         "Topology and defect report of a triangle mesh, as a dict. 'sphere_error' is None when the mesh\n"
-        "can be mapped to the sphere, else the reason it cannot.");
+        "can be mapped to the sphere, else the reason it cannot; 'pair_map_error' likewise for an\n"
+        "inter-surface map onto a partner of the same genus (any genus, holes and unused vertices allowed).");
   m.def("vertex_normals", &vertex_normals, py::arg("vertices"), py::arg("triangles"),
         "Unit area-weighted vertex normals (n, 3); zero for a vertex with only zero-area triangles.");
 }

@@ -7,10 +7,10 @@ Run by run_tests.py after test_maps.py.
 import bpy
 import numpy as np
 
-from consistent_maps import api, maps, meshdata, native, operators_compute
+from consistent_maps import api, maps, meshdata, native, operators_compute, panels, status
 from consistent_maps.transfer import corner_normals
 import test_addon
-from test_addon import SHARED, BALL, expect_error, load, make_set, snapshot
+from test_addon import SHARED, BALL, _Layout, expect_error, load, make_set, snapshot
 from test_maps import (_angles, _colours, _cylinder_uv, _farthest, _get, _new_uv, _shown_at_centroids, _smooth,
                        _textured, _tilt)
 
@@ -270,6 +270,36 @@ def test_pair_remeshes_share_one_connectivity():
     ball = load(BALL, "Ball", location=(-4, 0, 0))
     make_set([a, b, ball])
     expect_error(bpy.ops.consistent_maps.remesh, "remesh the set of those two objects alone")
+
+
+def test_pair_with_a_loose_vertex_is_mapped_and_the_panel_lists_what_compute_refuses():
+    """A torus with a vertex no face uses (higher-genus/teapot.off has 4) is mapped onto its partner like any other
+    pair (the native map leaves such vertices out; the add-on used to refuse it as 'genus 1' for the sphere); the
+    problems the panel lists are Compute's own: none for the pair, the sphere's with the hint in a set of three."""
+    a = load(TORUS, "Torus")
+    b = load(TORUS, "Loose", location=(4, 0, 0))
+    b.data.vertices.add(1)
+    b.data.vertices[-1].co = (0, 3, 0)
+    b.data.update()
+    for name, vertex in (("f0", 0), ("f1", 700), ("f2", 1500)):
+        for obj in (a, b):
+            api.add_feature(obj, name, vertex)
+    make_set([a, b])
+    report = status.of(b).report
+    assert report["referenced_vertices"] == report["vertices"] - 1
+    layout = _Layout()
+    panels._draw_problems(layout, [a, b], False)
+    assert layout.labels == [], layout.labels
+    bpy.context.scene.consistent_maps.effort = '0'
+    assert bpy.ops.consistent_maps.compute() == {'FINISHED'}
+    shape = _get(api.morph(b, a, align='none').data, "co", 3)
+    assert np.isfinite(shape).all() and len(shape) == len(b.data.vertices)
+    assert np.allclose(shape[700], maps.positions(a.data)[700], atol=1e-5)  # a feature lands exactly
+    assert len(api.remesh([a, b], 8)[1].data.vertices) == 66  # the loose vertex is no remesh vertex
+    ball = load(BALL, "Ball", location=(-4, 0, 0))
+    panels._draw_problems(layout, [a, b, ball], False)
+    tori = [line for line in layout.labels if "genus 1" in line]
+    assert len(tori) == 2 and all("make a set of just those two" in line for line in tori), layout.labels
 
 
 def test_pair_refuses_what_needs_a_sphere_and_mismatched_sets():

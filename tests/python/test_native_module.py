@@ -68,7 +68,20 @@ def test_check_mesh(native, spot_low):
 def test_check_mesh_reports_why_a_mesh_is_unsuitable(native):
     report = native.check_mesh(*native.read_mesh(str(SHARED / "higher-genus" / "torus.obj")))
     assert report["genus"] == 1
-    assert "genus 1" in report["sphere_error"]
+    assert "genus 1" in report["sphere_error"] and report["pair_map_error"] is None
+
+
+def test_check_mesh_says_what_an_inter_surface_map_takes(native):
+    """'pair_map_error' is None exactly where `cmaps check` says `intersurface` takes the mesh: any genus, holes
+    and unused vertices allowed (teapot.off has 4), defects named."""
+    for relative in ("higher-genus/teapot.off", "boundary/bunny_holes.obj", "genus0/cow.off"):
+        report = native.check_mesh(*native.read_mesh(str(SHARED / relative)))
+        assert report["pair_map_error"] is None, (relative, report["pair_map_error"])
+    teapot = native.check_mesh(*native.read_mesh(str(SHARED / "higher-genus" / "teapot.off")))
+    assert teapot["referenced_vertices"] < teapot["vertices"] and teapot["genus"] == 2
+    report = native.check_mesh(*native.read_mesh(str(SHARED / "invalid" / "dino_nonmanifold_edges.off")))
+    assert report["pair_map_error"] == ("mesh has 2 non-manifold edges (e.g. edge 15404-15545 is shared by 4 "
+                                        "triangles); an inter-surface map needs a manifold surface")
 
 
 def test_accepts_any_real_vertices_and_integer_triangles(native, octahedron):
