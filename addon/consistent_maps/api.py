@@ -294,13 +294,14 @@ def remesh(objects, resolution=64, *, threads=None):
         raise ComputeError("\n".join(found))
     if _mapped_directly(objects[0]):
         remeshed, names = _pair_remesh(*objects, resolution)
-    else:
-        locations = results.feature_locations(scene)
-        remeshed, names = native.consistent_remesh(
-            [results.surface(obj.data) for obj in objects],
-            np.array(list(locations.values()), dtype=float).reshape(-1, 3), resolution,
-            threads=threads or os.cpu_count() or 1), list(locations)
-    return remeshes.create(scene, objects, remeshed, names)
+        pair = {"carrier": objects[1 if remeshed["b_carries"] else 0].name,
+                "folded_triangles": int(remeshed["folded_triangles"])}
+        return remeshes.create(scene, objects, remeshed, names, pair)
+    locations = results.feature_locations(scene)
+    remeshed = native.consistent_remesh(
+        [results.surface(obj.data) for obj in objects], np.array(list(locations.values()), dtype=float).reshape(-1, 3),
+        resolution, threads=threads or os.cpu_count() or 1)
+    return remeshes.create(scene, objects, remeshed, list(locations))
 
 
 def sphere(obj):

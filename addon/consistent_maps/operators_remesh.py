@@ -1,7 +1,7 @@
 """Consistent remeshes of the computed set, as new objects."""
 import bpy
 
-from . import api
+from . import api, remeshes
 from .properties import set_objects
 
 
@@ -20,8 +20,11 @@ class CM_OT_remesh(bpy.types.Operator):
         except api.ComputeError as e:
             self.report({'ERROR'}, str(e))
             return {'CANCELLED'}
+        pair = created[0].get(remeshes.PAIR_REMESH)
+        through = (f" through the pair's map ({pair['carrier']}'s own vertices, {pair['folded_triangles']} "
+                   f"folded triangle(s))" if pair else "")
         self.report({'INFO'}, f"{len(created)} remesh(es) of {len(created[0].data.vertices)} vertices "
-                              f"in the collection '{created[0].users_collection[0].name}'")
+                              f"in the collection '{created[0].users_collection[0].name}'{through}")
         return {'FINISHED'}
 
 

@@ -8,6 +8,7 @@ import bpy
 from . import features
 
 COLLECTION = "Consistent Maps"
+PAIR_REMESH = "cm_pair_remesh"  # custom property of a pair's remeshes: the carrier's name, folded triangles
 
 
 def collection(scene):
@@ -18,8 +19,9 @@ def collection(scene):
     return found
 
 
-def create(scene, objects, remeshed, names):
-    """New objects from the native consistent_remesh result (same order as objects)."""
+def create(scene, objects, remeshed, names, pair=None):
+    """New objects from the native consistent_remesh (or remesh_pair) result (same order as objects); `pair`
+    (a pair's remeshes: {"carrier": name, "folded_triangles": count}) is kept on each as PAIR_REMESH."""
     target = collection(scene)
     triangles = remeshed["triangles"].tolist()
     created = []
@@ -29,6 +31,8 @@ def create(scene, objects, remeshed, names):
         mesh.update()
         new = bpy.data.objects.new(mesh.name, mesh)
         new.matrix_world = obj.matrix_world.copy()
+        if pair is not None:
+            new[PAIR_REMESH] = pair
         for name, vertex in zip(names, remeshed["feature_vertices"]):
             new.vertex_groups.new(name=features.group_name(name)).add([int(vertex)], 1.0, 'REPLACE')
         target.objects.link(new)
