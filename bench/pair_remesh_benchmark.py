@@ -61,7 +61,8 @@ def main():
         a, b = mesh(name_a), mesh(name_b)
         features = pairs()
         r = _native.intersurface_map(a, b, features, threads=2)
-        a_to_b, b_to_a = (r["a_to_b_triangle"], r["a_to_b_barycentric"]), (r["b_to_a_triangle"], r["b_to_a_barycentric"])
+        a_to_b = (r["a_to_b_triangle"], r["a_to_b_barycentric"])
+        b_to_a = (r["b_to_a_triangle"], r["b_to_a_barycentric"])
         for n in RESOLUTIONS:
             start = time.perf_counter()
             remesh = _native.remesh_pair(a, b, a_to_b, b_to_a, features, n * n + 2)
