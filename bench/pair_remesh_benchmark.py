@@ -8,7 +8,6 @@ BENCHMARKS.md.
 import json
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
 

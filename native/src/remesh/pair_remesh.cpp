@@ -19,13 +19,19 @@ bool folded(const std::vector<Vec3>& x, const std::vector<Vec3>& normals, const 
   return (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]).dot(normals[t[0]] + normals[t[1]] + normals[t[2]]) <= 0;
 }
 
+// Per vertex: whether a triangle uses it (indices already checked).
+std::vector<char> used_vertices(const TriangleMesh& mesh) {
+  std::vector<char> used(mesh.vertices.size(), 0);
+  for (const Triangle& t : mesh.triangles)
+    for (int v : t) used[v] = 1;
+  return used;
+}
+
 // Each used carrier vertex's image on the partner and the partner's normal
 // there (its vertex normals interpolated); unused vertices get zeros.
 void images(const TriangleMesh& carrier, const TriangleMesh& partner, const std::vector<SurfacePoint>& points,
             std::vector<Vec3>& positions, std::vector<Vec3>& normals) {
-  std::vector<char> used(carrier.vertices.size(), 0);
-  for (const Triangle& t : carrier.triangles)
-    for (int v : t) used[v] = 1;
+  const std::vector<char> used = used_vertices(carrier);
   const std::vector<Vec3> vertex = vertex_normals(partner);
   positions.assign(points.size(), Vec3::Zero());
   normals.assign(points.size(), Vec3::Zero());
@@ -108,10 +114,7 @@ PairRemesh remesh_carried(const TriangleMesh& carrier, const TriangleMesh& partn
 
 // Which mesh's vertex each pair names (A's or B's), checked: in range and used by a triangle.
 std::vector<int> feature_vertices(const std::vector<FeaturePair>& features, const TriangleMesh& mesh, bool of_b) {
-  std::vector<char> used(mesh.vertices.size(), 0);
-  for (const Triangle& t : mesh.triangles)
-    for (int v : t)
-      if (v >= 0 && v < int(used.size())) used[v] = 1;
+  const std::vector<char> used = used_vertices(mesh);
   const std::string name = of_b ? "B" : "A";
   std::vector<int> vertices;
   for (const FeaturePair& p : features) {
@@ -140,10 +143,10 @@ PairRemesh remesh_pair(const TriangleMesh& a, const TriangleMesh& b, const std::
   require_images(b_on_a, b, "B");
   if (target_vertices < 4)
     throw InvalidInput("a remesh needs at least 4 vertices, not " + std::to_string(target_vertices));
-  const std::vector<int> features_a = feature_vertices(features, a, false);
-  const std::vector<int> features_b = feature_vertices(features, b, true);
   require_pair_map_topology(a);
   require_pair_map_topology(b);
+  const std::vector<int> features_a = feature_vertices(features, a, false);
+  const std::vector<int> features_b = feature_vertices(features, b, true);
   PairRemesh by_a, by_b;
   for (const std::exception_ptr& thrown : run_side_by_side(
            {}, 0.5, [&](const ProgressCallback&) { by_a = remesh_carried(a, b, a_on_b, features_a, target_vertices); },
