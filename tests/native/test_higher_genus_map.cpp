@@ -121,6 +121,25 @@ TEST_P(HigherGenusPartition, BaseTriangulationsAgreeAndPatchesEmbedBijectively) 
   expect_consistent_partition(p, GetParam().genus);
 }
 
+// A mesh against its mirror image (turned to face outwards again), each
+// feature onto its own mirror image: every triple of features turns the
+// other way on B, so every tree path passes some feature on the other side
+// than on A. Such paths wait, and the last ones joining two components are
+// re-routed; the partition stays consistent (spot_low, 10 features,
+// measured 43 paths put off, 4 of 5 laid at last re-routed).
+TEST(ConsistentPartition, MirrorImagePathsArePutOffAndRerouted) {
+  const TriangleMesh a = read_mesh(shared_mesh("genus0/spot_low.obj"));
+  TriangleMesh b = a;
+  for (Vec3& p : b.vertices) p.x() = -p.x();
+  for (Triangle& t : b.triangles) std::swap(t[1], t[2]);
+  std::vector<std::array<int, 2>> pairs;
+  for (int v : farthest_points(a, 10)) pairs.push_back({v, v});
+  ConsistentPartition p = consistent_partition(a, b, pairs, 0);
+  EXPECT_GT(p.delayed_paths, 10);
+  EXPECT_GT(p.rerouted_paths, 0);
+  expect_consistent_partition(p, 0);
+}
+
 // Per base triangle: its share of the side's area.
 std::vector<double> area_shares(const PartitionSide& side, int patches) {
   std::vector<double> share(patches, 0);

@@ -13,6 +13,7 @@
 #include "intersurface/partition_network.h"
 #include "intersurface/path_guide.h"
 #include "intersurface/tree_cotree.h"
+#include "mesh/union_find.h"
 #include "paths/mesh_search.h"
 
 namespace cmaps {
@@ -26,6 +27,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr int kNearest = 10;          // tree candidates: each feature's nearest features
 constexpr int kJoinAttempts = 40;     // corner pairs tried to join two boundary walks
 constexpr int kDiagonalAttempts = 8;  // nearest corner pairs traced to split a face (the shortest is laid)
+constexpr int kExtremityNeighbours = 8;  // features whose mean distance marks an extremity (thesis 5.4)
+constexpr int kSideNeighbours = 6;       // nearby features whose side a tree path must keep on both meshes
 
 // How a new path may attach at one of its features: anywhere on both meshes,
 // anywhere on A and through the corresponding sector on B, or in the sector
@@ -107,45 +110,95 @@ class Partitioner {
     double length = 0;  // summed, size-normalized
   };
 
+  // How a path may leave (or enter) a feature on one side: anywhere, or in
+  // the sector after end `after`; a cut (the ring position of a temporary
+  // path's step into the feature) keeps only the part of that sector before
+  // it or after it, counter-clockwise (half the ring when nothing else ends there).
+  struct Gate {
+    bool restricted = false;
+    End after;
+    double cut = -1;
+    bool before_cut = false;
+  };
+
+  Sector gate(int s, int f, const Gate& g, const std::vector<End>& around, int vertices, bool midpoints) const {
+    const Side& side = sides_[s];
+    Sector sector =
+        g.restricted ? side.after(f, g.after, around, vertices, midpoints) : side.positions(f, vertices, midpoints);
+    if (g.cut < 0) return sector;
+    const double size = sector.size;
+    if (sector.everything) {
+      sector.everything = false;
+      sector.lo = g.before_cut ? std::fmod(g.cut + size / 2, size) : g.cut;
+      sector.span = size / 2;
+    } else {
+      const double rel = std::fmod(g.cut - sector.lo + size, size);
+      if (rel <= 0 || rel >= sector.span) return sector;  // the cut lies in another sector
+      if (g.before_cut) {
+        sector.span = rel;
+      } else {
+        sector.lo = g.cut;
+        sector.span -= rel;
+      }
+    }
+    return sector;
+  }
+
+  // Side s's shortest path from feature i to j through the gates, over
+  // vertices and, when that finds none, edge midpoints too; empty when none.
+  std::vector<int> trace_on(int s, int i, int j, const Gate& at_i, const Gate& at_j, const Side::StepFactor* factor,
+                            int& vertices) const {
+    const Side& side = sides_[s];
+    const std::vector<End> around_i = side.ends(i, edges_), around_j = side.ends(j, edges_);
+    const auto gated = [](const Gate& g) { return g.restricted || g.cut >= 0; };
+    for (bool midpoints : {false, true}) {
+      vertices = side.mesh.vertex_count();
+      const Sector leave = gate(s, i, at_i, around_i, vertices, midpoints);
+      const Sector enter = gate(s, j, at_j, around_j, vertices, midpoints);
+      std::vector<int> nodes =
+          side.trace(i, j, gated(at_i) ? &leave : nullptr, gated(at_j) ? &enter : nullptr, midpoints, factor);
+      if (!nodes.empty()) return nodes;
+    }
+    return {};
+  }
+
+  // The ends after which side s's half of `traced` leaves i and enters j.
+  std::array<End, 2> gaps(int s, int i, int j, const Traced& traced) const {
+    const Side& side = sides_[s];
+    const std::vector<int>& nodes = traced.nodes[s];
+    return {side.gap_of(i, nodes[1], side.ends(i, edges_), traced.vertices[s], true),
+            side.gap_of(j, nodes[nodes.size() - 2], side.ends(j, edges_), traced.vertices[s], true)};
+  }
+
+  // The step factor keeping B's search near A's half of `traced` (path_guide.h).
+  Side::StepFactor near_a(const Traced& traced) const {
+    std::vector<Vec3> on_a;
+    for (int node : traced.nodes[0]) on_a.push_back(node_position(sides_[0].mesh, node, traced.vertices[0]));
+    return guide_.near(on_a);
+  }
+
+  double length(int s, const Traced& traced) const {
+    return path_length(sides_[s].mesh, traced.nodes[s], traced.vertices[s]) / scale_[s];
+  }
+
   // With a `bound`, gives up (false) once the pair cannot be shorter: A's
   // traced length plus B's straight distance reaches it.
   bool trace(int i, int j, const Attach& at_i, const Attach& at_j, Traced& traced, double bound = kInf) const {
-    std::vector<int>* nodes = traced.nodes;
-    int* vertices = traced.vertices;
-    End used_i, used_j;  // the sectors on A, for kMatch
+    std::array<End, 2> on_a;  // the sectors A's half used, for kMatch
     for (int s = 0; s < 2; ++s) {
-      const Side& side = sides_[s];
-      const std::vector<End> around_i = side.ends(i, edges_), around_j = side.ends(j, edges_);
-      const auto rule = [&](const Attach& at, const End& used) -> std::pair<bool, End> {
-        if (at.mode == Attach::kFree || (at.mode == Attach::kMatch && s == 0)) return {false, {}};
-        return {true, at.mode == Attach::kFixed ? at.after : used};
+      const auto gate_of = [&](const Attach& at, const End& used) {
+        Gate g;
+        g.restricted = at.mode == Attach::kFixed || (at.mode == Attach::kMatch && s == 1);
+        g.after = at.mode == Attach::kFixed ? at.after : used;
+        return g;
       };
-      const auto [restrict_i, after_i] = rule(at_i, used_i);
-      const auto [restrict_j, after_j] = rule(at_j, used_j);
-      // B's half keeps near A's (path_guide.h).
-      Side::StepFactor near_a;
-      if (s == 1) {
-        std::vector<Vec3> on_a;
-        for (int node : nodes[0]) on_a.push_back(node_position(sides_[0].mesh, node, vertices[0]));
-        near_a = guide_.near(on_a);
-      }
-      for (bool midpoints : {false, true}) {
-        vertices[s] = side.mesh.vertex_count();
-        const Sector leave = side.after(i, after_i, around_i, vertices[s], midpoints);
-        const Sector enter = side.after(j, after_j, around_j, vertices[s], midpoints);
-        nodes[s] = side.trace(i, j, restrict_i ? &leave : nullptr, restrict_j ? &enter : nullptr, midpoints,
-                              s == 1 ? &near_a : nullptr);
-        if (!nodes[s].empty()) {
-          if (s == 0) {
-            used_i = side.gap_of(i, nodes[s][1], around_i, vertices[s], midpoints);
-            used_j = side.gap_of(j, nodes[s][nodes[s].size() - 2], around_j, vertices[s], midpoints);
-          }
-          break;
-        }
-      }
-      if (nodes[s].empty()) return false;
-      traced.length += path_length(side.mesh, nodes[s], vertices[s]) / scale_[s];
+      const Side::StepFactor guide = s == 1 ? near_a(traced) : Side::StepFactor();
+      traced.nodes[s] = trace_on(s, i, j, gate_of(at_i, on_a[0]), gate_of(at_j, on_a[1]), s == 1 ? &guide : nullptr,
+                                 traced.vertices[s]);
+      if (traced.nodes[s].empty()) return false;
+      traced.length += length(s, traced);
       if (s == 0) {
+        on_a = gaps(0, i, j, traced);
         const Side& b = sides_[1];
         if (traced.length + (b.mesh.position(b.feature[i]) - b.mesh.position(b.feature[j])).norm() / scale_[1] >= bound)
           return false;
@@ -200,7 +253,14 @@ class Partitioner {
 
   bool is_centre(int f) const { return std::find(centres_.begin(), centres_.end(), f) != centres_.end(); }
 
-  // Phase 1: a spanning tree of the features.
+  // Phase 1: a spanning tree of the features, Kruskal over pairs of nearby
+  // features by cost, with the two swirl heuristics of thesis 5.4 (swirls:
+  // paths winding round other features, so the patches twist): while a
+  // feature at an extremity has no path, only paths touching an extremity
+  // are laid (else paths between other features go round an extremity's
+  // base, on either side); a pair passing a nearby feature of another
+  // component on different sides on A and B waits until nothing else joins
+  // two components, and is then re-routed on one mesh to the other's side.
   void tree() {
     const int k = int(sides_[0].feature.size());
     std::vector<std::pair<double, std::array<int, 2>>> candidates;
@@ -215,19 +275,160 @@ class Partitioner {
     }
     std::sort(candidates.begin(), candidates.end());
     candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-    std::vector<int> root(k);
-    std::iota(root.begin(), root.end(), 0);
-    const std::function<int(int)> find = [&](int x) { return root[x] == x ? x : root[x] = find(root[x]); };
-    int components = k;
+    UnionFind components(k);
+    int count = k;
+    std::vector<int> degree(k, 0);
+    const auto join = [&](int i, int j) {
+      components.unite(i, j);
+      --count;
+      ++degree[i], ++degree[j];
+    };
     for (const auto& e : edges_)  // the seeded holes
-      if (find(e[0]) != find(e[1])) root[find(e[0])] = find(e[1]), --components;
-    for (const auto& [c, pair] : candidates) {
-      if (find(pair[0]) == find(pair[1]) || is_centre(pair[0]) || is_centre(pair[1])) continue;
-      if (!connect(pair[0], pair[1], {Attach::kMatch, {}}, {Attach::kMatch, {}})) continue;
-      root[find(pair[0])] = find(pair[1]);
-      --components;
+      if (components.find(e[0]) != components.find(e[1])) join(e[0], e[1]);
+    const std::vector<char> extreme = extremities();
+    bool extremities_first = true;
+    std::vector<char> done(candidates.size(), 0);  // laid, untraceable or on the wrong side
+    std::vector<size_t> waiting;                     // on the wrong side, by cost
+    const Attach match{Attach::kMatch, {}};
+    while (count > 1) {
+      bool waits = false;  // an extremity without a path
+      for (int f = 0; f < k; ++f) waits |= extremities_first && extreme[f] && !degree[f];
+      bool laid = false;
+      for (size_t c = 0; c < candidates.size() && !laid; ++c) {
+        const auto [i, j] = candidates[c].second;
+        if (done[c] || (waits && !extreme[i] && !extreme[j])) continue;
+        done[c] = 1;
+        Traced traced;
+        if (components.find(i) == components.find(j) || is_centre(i) || is_centre(j) ||
+            !trace(i, j, match, match, traced))
+          continue;
+        if (wrong_side(i, j, traced, components) >= 0) {
+          ++delayed_;
+          waiting.insert(std::upper_bound(waiting.begin(), waiting.end(), c), c);
+          continue;
+        }
+        lay(i, j, traced);
+        join(i, j);
+        laid = true;
+      }
+      if (laid) continue;
+      if (waits) {  // the extremities left cannot be joined first
+        extremities_first = false;
+        continue;
+      }
+      // Only pairs on the wrong side join components: the cheapest, re-routed.
+      for (auto c = waiting.begin(); c != waiting.end() && !laid;) {
+        const auto [i, j] = candidates[*c].second;
+        c = waiting.erase(c);
+        Traced traced;
+        if (components.find(i) == components.find(j) || !trace(i, j, match, match, traced)) continue;
+        const int n = wrong_side(i, j, traced, components);
+        if (n >= 0 && reroute(i, j, n, traced)) ++rerouted_;
+        lay(i, j, traced);
+        join(i, j);
+        laid = true;
+      }
+      if (!laid) throw Error("could not connect the features by a tree of corresponding paths");
     }
-    if (components > 1) throw Error("could not connect the features by a tree of corresponding paths");
+  }
+
+  // Per feature: whether it lies at an extremity of A or of B, among the
+  // top quarter by mean distance to its nearest features there (thesis 5.4).
+  std::vector<char> extremities() const {
+    const int k = int(sides_[0].feature.size());
+    std::vector<char> extreme(k, 0);
+    for (const Side& side : sides_) {
+      std::vector<std::pair<double, int>> spread;
+      for (int f = 0; f < k; ++f) {
+        if (is_centre(f)) continue;
+        std::vector<double> distance;
+        for (int g = 0; g < k; ++g)
+          if (g != f && !is_centre(g))
+            distance.push_back((side.mesh.position(side.feature[f]) - side.mesh.position(side.feature[g])).norm());
+        const size_t n = std::min<size_t>(kExtremityNeighbours, distance.size());
+        std::partial_sort(distance.begin(), distance.begin() + n, distance.end());
+        const double mean = std::accumulate(distance.begin(), distance.begin() + n, 0.0) / double(std::max<size_t>(n, 1));
+        spread.push_back({-mean, f});  // farthest first
+      }
+      std::sort(spread.begin(), spread.end());
+      for (size_t n = 0; n < spread.size() / 4; ++n) extreme[spread[n].second] = 1;
+    }
+    return extreme;
+  }
+
+  // The nearest feature of neither i's nor j's component that the two halves
+  // of `traced` pass on different sides (-1: none), among the features nearest
+  // i and j on each mesh.
+  int wrong_side(int i, int j, const Traced& traced, UnionFind& components) const {
+    const int k = int(sides_[0].feature.size());
+    std::vector<std::pair<double, int>> near;
+    for (int f = 0; f < k; ++f)
+      if (components.find(f) != components.find(i) && components.find(f) != components.find(j) && !is_centre(f))
+        near.push_back({std::min(cost(f, i), cost(f, j)), f});
+    std::sort(near.begin(), near.end());
+    near.resize(std::min<size_t>(near.size(), kSideNeighbours));
+    if (near.empty()) return -1;
+    std::vector<int> side[2];
+    for (int s = 0; s < 2; ++s) {
+      std::vector<int> queries;
+      for (const auto& [c, f] : near) queries.push_back(sides_[s].feature[f]);
+      side[s] = sides_[s].sides_of(traced.nodes[s], traced.vertices[s], queries);
+    }
+    for (size_t n = 0; n < near.size(); ++n)
+      if (side[0][n] * side[1][n] < 0) return near[n].second;
+    return -1;
+  }
+
+  // Re-traces one half of `traced` so that feature n lies on the side of it
+  // the other half leaves n on (thesis 5.4): temporary paths from n to i and
+  // to j (vertices only, so the mesh is unchanged) leave the new half one
+  // sector at each end, the one before or after them; it still keeps to the
+  // other half's sectors. Of the two halves re-traced, the shorter pair is
+  // kept; false (`traced` unchanged) when neither puts n on one side.
+  bool reroute(int i, int j, int n, Traced& traced) {
+    Traced best;
+    for (int s = 0; s < 2; ++s) {
+      const int r = 1 - s;  // the reference half
+      const int want = sides_[r].sides_of(traced.nodes[r], traced.vertices[r], {sides_[r].feature[n]})[0];
+      Side& side = sides_[s];
+      std::vector<int> arm_i = side.trace(n, i, nullptr, nullptr, false, nullptr);
+      if (!want || arm_i.empty()) continue;
+      std::vector<std::pair<int, char>> blocked;
+      std::vector<int> closed;
+      const auto close = [&](const std::vector<int>& arm) {
+        for (size_t a = 0; a < arm.size(); ++a) {
+          blocked.push_back({arm[a], side.blocked[arm[a]]});
+          side.blocked[arm[a]] = 1;
+          if (a + 1 < arm.size() && side.path_edges.insert(side.mesh.edge(arm[a], arm[a + 1])).second)
+            closed.push_back(side.mesh.edge(arm[a], arm[a + 1]));
+        }
+      };
+      close(arm_i);
+      const std::vector<int> arm_j = side.trace(n, j, nullptr, nullptr, false, nullptr);
+      Traced candidate = traced;
+      if (!arm_j.empty()) {
+        close(arm_j);
+        const std::array<End, 2> used = gaps(r, i, j, traced);
+        const auto cut = [&](int f, const std::vector<int>& arm, bool before) {
+          const std::vector<int> ring = side.mesh.ring(side.feature[f]);
+          const auto at = std::find(ring.begin(), ring.end(), arm[arm.size() - 2]);
+          return Gate{true, used[f == i ? 0 : 1], double(at - ring.begin()), before};
+        };
+        const Side::StepFactor guide = s == 1 ? near_a(traced) : Side::StepFactor();
+        candidate.nodes[s] = trace_on(s, i, j, cut(i, arm_i, want > 0), cut(j, arm_j, want < 0),
+                                      s == 1 ? &guide : nullptr, candidate.vertices[s]);
+      }
+      for (auto it = blocked.rbegin(); it != blocked.rend(); ++it) side.blocked[it->first] = it->second;
+      for (int e : closed) side.path_edges.erase(e);
+      if (arm_j.empty() || candidate.nodes[s].empty() ||
+          side.sides_of(candidate.nodes[s], candidate.vertices[s], {side.feature[n]})[0] != want)
+        continue;
+      candidate.length = length(0, candidate) + length(1, candidate);
+      if (best.nodes[0].empty() || candidate.length < best.length) best = std::move(candidate);
+    }
+    if (best.nodes[0].empty()) return false;
+    traced = std::move(best);
+    return true;
   }
 
   // Counter-clockwise ends around every feature (on side s).
@@ -560,6 +761,8 @@ class Partitioner {
     }
     ConsistentPartition result;
     result.edges = edges_;
+    result.delayed_paths = delayed_;
+    result.rerouted_paths = rerouted_;
     const std::vector<Walk> all = walks();
     const int v = int(sides_[0].feature.size()), e = int(edges_.size()), f = int(all.size());
     if (v - e + f != 2 - 2 * genus_)
@@ -598,6 +801,7 @@ class Partitioner {
   const PartitionHoles& holes_;
   std::vector<int> centres_;  // features at hole centres
   int seeded_cycles_ = 0;
+  int delayed_ = 0, rerouted_ = 0;
   std::vector<Side> sides_;
   double scale_[2] = {1, 1};
   std::vector<std::array<int, 2>> edges_;

@@ -11,7 +11,9 @@
 // mesh, every walk bounds its own region; the construction reaches that in
 // three phases:
 //   1. a spanning tree of the features (Kruskal over pairs ranked by their
-//      summed, size-normalized distances on both meshes);
+//      summed, size-normalized distances on both meshes), avoiding swirls:
+//      features at extremities joined first, pairs passing a nearby feature
+//      on different sides of A and B delayed, then re-routed (thesis 5.4);
 //   2. 2g non-separating paths: while the single region has several boundary
 //      walks, a path joining two of them (never separating); otherwise a new
 //      feature pair on a non-separating cycle of each mesh (tree-cotree, the
@@ -60,6 +62,8 @@ struct ConsistentPartition {
   std::vector<std::array<int, 2>> edges;   // per base edge: its base vertices
   std::vector<BaseTriangle> triangles;
   int given_features = 0;                  // base vertices 0 .. given - 1 are the caller's pairs
+  int delayed_paths = 0;                   // tree pairs traced on different sides of a feature, put off
+  int rerouted_paths = 0;                  // of those laid at last, re-routed to one side on both meshes
 };
 
 // Meshes with holes, closed by fans (intersurface/hole_rims.h): each rim is

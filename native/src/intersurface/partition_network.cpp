@@ -5,6 +5,7 @@
 #include <limits>
 #include <queue>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "consistent_maps/errors.h"
 
@@ -13,6 +14,21 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kMidpointPenalty = 1.0;  // a step through an edge midpoint costs 1 + this times its length
+
+// Ring positions of v's search neighbours (see Side::positions).
+Sector ring_positions(const EditableMesh& mesh, int v, int vertices, bool midpoints) {
+  Sector s;
+  const std::vector<int> ring = mesh.ring(v);
+  s.size = double(ring.size());
+  for (int k = 0; k < int(ring.size()); ++k) {
+    s.position[ring[k]] = k;
+    if (midpoints) {
+      s.position[vertices + mesh.edge(ring[k], ring[(k + 1) % ring.size()])] = k + 0.5;
+      s.position[vertices + mesh.edge(v, ring[k])] = k;
+    }
+  }
+  return s;
+}
 
 }  // namespace
 
@@ -56,18 +72,73 @@ std::vector<End> Side::ends(int f, const std::vector<std::array<int, 2>>& edges)
 }
 
 Sector Side::positions(int f, int vertices, bool midpoints) const {
-  Sector s;
-  const int v = feature[f];
-  const std::vector<int> ring = mesh.ring(v);
-  s.size = double(ring.size());
-  for (int k = 0; k < int(ring.size()); ++k) {
-    s.position[ring[k]] = k;
-    if (midpoints) {
-      s.position[vertices + mesh.edge(ring[k], ring[(k + 1) % ring.size()])] = k + 0.5;
-      s.position[vertices + mesh.edge(v, ring[k])] = k;
+  return ring_positions(mesh, feature[f], vertices, midpoints);
+}
+
+std::vector<int> Side::sides_of(const std::vector<int>& nodes, int vertices, const std::vector<int>& queries) const {
+  const int n = mesh.vertex_count();
+  std::vector<char> on_path(n, 0);
+  std::unordered_set<int> crossed;  // edges the path crosses at their midpoints
+  for (int node : nodes) node < vertices ? void(on_path[node] = 1) : void(crossed.insert(node - vertices));
+  std::vector<double> dist(n, kInf);
+  std::vector<int> side(n, 0);
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> open;
+  const auto seed = [&](int v, int s, const Vec3& at) {
+    const double d = (mesh.position(v) - at).norm();
+    if (on_path[v] || d >= dist[v]) return;
+    dist[v] = d, side[v] = s;
+    open.push({d, v});
+  };
+  // The vertices beside each interior node: around a vertex, its ring left
+  // (counter-clockwise from the way out to the way in) or right of the path;
+  // at a crossed edge, its two ends by the turn they make with the path.
+  // Routes meeting the path at an end find no side.
+  for (size_t k : {size_t(0), nodes.size() - 1})
+    for (int u : mesh.ring(nodes[k])) seed(u, 0, mesh.position(nodes[k]));
+  for (size_t k = 1; k + 1 < nodes.size(); ++k) {
+    const Vec3 at = node_position(mesh, nodes[k], vertices);
+    if (nodes[k] < vertices) {
+      const int v = nodes[k];
+      const Sector around = ring_positions(mesh, v, vertices, true);
+      const std::vector<int> ring = mesh.ring(v);
+      const double size = around.size, out = around.position.at(nodes[k + 1]), in = around.position.at(nodes[k - 1]);
+      const double left = std::fmod(in - out + size, size);
+      for (int r = 0; r < int(ring.size()); ++r) {
+        const double turn = std::fmod(r - out + size, size);
+        if (turn > 0 && turn != left) seed(ring[r], turn < left ? 1 : -1, at);
+      }
+    } else {
+      const int e = nodes[k] - vertices;
+      const Vec3 along = node_position(mesh, nodes[k + 1], vertices) - node_position(mesh, nodes[k - 1], vertices);
+      Vec3 normal = Vec3::Zero();
+      for (int f : mesh.edge_faces(e)) {
+        const Triangle& t = mesh.triangles()[f];
+        normal += (mesh.position(t[1]) - mesh.position(t[0])).cross(mesh.position(t[2]) - mesh.position(t[0]));
+      }
+      for (int u : mesh.edge_vertices(e)) seed(u, normal.dot(along.cross(mesh.position(u) - at)) > 0 ? 1 : -1, at);
     }
   }
-  return s;
+  std::unordered_map<int, int> waiting;  // query vertex -> how often asked
+  for (int q : queries) ++waiting[q];
+  size_t unsettled = waiting.size();
+  while (!open.empty() && unsettled > 0) {
+    const auto [d, u] = open.top();
+    open.pop();
+    if (d > dist[u]) continue;
+    if (waiting.count(u) && waiting[u] > 0) waiting[u] = 0, --unsettled;
+    for (int w : mesh.ring(u)) {
+      if (on_path[w] || crossed.count(mesh.edge(u, w))) continue;
+      const double nd = d + (mesh.position(w) - mesh.position(u)).norm();
+      if (nd < dist[w]) {
+        dist[w] = nd, side[w] = side[u];
+        open.push({nd, w});
+      }
+    }
+  }
+  std::vector<int> result;
+  for (int q : queries) result.push_back(waiting.at(q) == 0 ? side[q] : 0);
+  return result;
 }
 
 Sector Side::after(int f, const End& x, const std::vector<End>& around, int vertices, bool midpoints) const {

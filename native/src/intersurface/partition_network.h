@@ -58,6 +58,13 @@ class Side {
   // midpoint of the edge to ring vertex k at k.
   Sector positions(int f, int vertices, bool midpoints) const;
 
+  // The side of a traced node sequence (search nodes, `vertices` as at the
+  // trace) each vertex of `queries` lies on: +1 left, -1 right, walking from
+  // its first node with the surface's outside up; 0 when none is found. The
+  // side is where the shortest route from the query meets the path's interior
+  // (thesis 3.3.3); routes may cross other paths, not this one.
+  std::vector<int> sides_of(const std::vector<int>& nodes, int vertices, const std::vector<int>& queries) const;
+
   // The sector after end x at f (up to the next end counter-clockwise).
   Sector after(int f, const End& x, const std::vector<End>& around, int vertices, bool midpoints) const;
 
