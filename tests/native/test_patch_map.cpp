@@ -141,14 +141,16 @@ double truth_error(const std::vector<InputLocation>& image, const TriangleMesh& 
   return sum / double(image.size()) / (hi - lo).norm();
 }
 
-// Two poses of one cactus (vertex i onto vertex i), partitioned between 8
-// farthest-point pairs.
+// Two poses of one cactus (vertex i onto vertex i), partitioned between
+// farthest-point pairs (8 unless said).
 struct CactusPoses {
+  explicit CactusPoses(int count = 8) : count(count) {}
+  const int count;
   const TriangleMesh a = read_mesh(shared_mesh("sets/cactus/cactus0.ply"));
   const TriangleMesh b = read_mesh(shared_mesh("sets/cactus/cactus1.ply"));
   const std::vector<std::array<int, 2>> pairs = [this] {
     std::vector<std::array<int, 2>> pairs;
-    for (int v : farthest_points(a, 8)) pairs.push_back({v, v});
+    for (int v : farthest_points(a, count)) pairs.push_back({v, v});
     return pairs;
   }();
   ConsistentPartition p = consistent_partition(a, b, pairs, 0);
@@ -157,8 +159,11 @@ struct CactusPoses {
 TEST(PatchMapOptimization, AreaMatchingNearsTheTruthAndKeepsEveryPatchEmbedded) {
   // The global step alone (no vertex sweeps, paths as walls) must lower the
   // energy of both directions, bring the map nearer the truth, keep every
-  // patch's embedding bijective and leave the paths where they were.
-  CactusPoses poses;
+  // patch's embedding bijective and leave the paths where they were. With 5
+  // pairs the patches' areas differ between the poses; with 8 the partition
+  // now leaves the step little to do (measured 8.82 -> 8.67, 1.09 -> 0.88 %:
+  // the tree's swirl heuristics of session 31 laid better paths).
+  CactusPoses poses(5);
   const TriangleMesh& b = poses.b;
   ConsistentPartition& p = poses.p;
   PatchParameterization matched = parameterize_patches(p.sides[0], p);
@@ -172,7 +177,7 @@ TEST(PatchMapOptimization, AreaMatchingNearsTheTruthAndKeepsEveryPatchEmbedded) 
   const double matched_truth = truth_error(CrossPatchMap(p, matched, uv_b).map_a(b, 2), b);
   std::printf("  energy %.2f -> %.2f, truth %.2f -> %.2f %%\n", result.energy_before, result.energy_after,
               100 * plain_truth, 100 * matched_truth);
-  // Measured: energy 1,339 -> 1,137, truth 1.47 -> 1.01 %.
+  // Measured: energy 113 -> 8.8, truth 2.34 -> 1.15 %.
   EXPECT_LT(result.energy_after, 0.9 * result.energy_before);
   EXPECT_LT(matched_truth, 0.8 * plain_truth);
 
