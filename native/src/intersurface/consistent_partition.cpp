@@ -347,7 +347,8 @@ class Partitioner {
             distance.push_back((side.mesh.position(side.feature[f]) - side.mesh.position(side.feature[g])).norm());
         const size_t n = std::min<size_t>(kExtremityNeighbours, distance.size());
         std::partial_sort(distance.begin(), distance.begin() + n, distance.end());
-        const double mean = std::accumulate(distance.begin(), distance.begin() + n, 0.0) / double(std::max<size_t>(n, 1));
+        const double sum = std::accumulate(distance.begin(), distance.begin() + n, 0.0);
+        const double mean = sum / double(std::max<size_t>(n, 1));
         spread.push_back({-mean, f});  // farthest first
       }
       std::sort(spread.begin(), spread.end());
