@@ -1,6 +1,6 @@
 """Inter-surface maps of genus >= 1 (issue 5): `cmaps intersurface` on pairs of equal genus from
-shared/meshes/higher-genus, plus a torus against a stretched, re-indexed copy of itself, where the
-true correspondence is known. Rewrites the `intersurface-genus-benchmark` section of BENCHMARKS.md.
+shared/meshes/higher-genus, plus the torus, genus3 and fertility (genus 4) against stretched, re-indexed
+copies of themselves, where the true correspondence is known. Rewrites the `intersurface-genus-benchmark` section of BENCHMARKS.md.
 
     python3 bench/intersurface_benchmark.py   (after building build/cmaps)
 """
@@ -47,13 +47,38 @@ def holed(vertices, triangles, centres):
     return vertices[keep], index[triangles[keep[triangles].all(axis=1)]]
 
 
-def stretched_torus(directory):
-    """The torus re-indexed and scaled by (1.5, 1, 0.7); returns its path and old -> new vertex index."""
-    vertices, triangles = _native.read_mesh(str(HIGHER / "torus.obj"))
+def stretched_copy(directory, name="torus.obj", bend=0.0):
+    """A mesh of HIGHER re-indexed and scaled by (1.5, 1, 0.7), then bent (y += bend * x^2 about the centre, x
+    over the largest centred coordinate); returns its path, old -> new vertex index and moved positions."""
+    vertices, triangles = _native.read_mesh(str(HIGHER / name))
     new_index = np.random.default_rng(1).permutation(len(vertices))
+    centred = vertices - vertices.mean(axis=0)
+    size = np.abs(centred).max()
     moved = np.empty_like(vertices)
     moved[new_index] = vertices * np.array([1.5, 1.0, 0.7])
-    return write_obj(Path(directory) / "torus_stretched.obj", moved, new_index[triangles]), new_index, moved
+    moved[new_index, 1] += bend * size * (centred[:, 0] / size) ** 2
+    path = Path(directory) / f"{Path(name).stem}_stretched.obj"
+    return write_obj(path, moved, new_index[triangles]), new_index, moved
+
+
+def truth_rows(tmp, name, label, counts, bend=0.0):
+    """Rows of `name` against its stretched copy with 0 or more true pairs (random, seed 5): mean error of A's
+    images from the truth."""
+    path, new_index, moved = stretched_copy(tmp, name, bend)
+    diagonal = np.linalg.norm(moved.max(axis=0) - moved.min(axis=0))
+    rows = []
+    for k in counts:
+        chosen = np.random.default_rng(5).choice(len(new_index), k, replace=False)
+        arguments = ["--features", write_features(tmp, [(int(v), int(new_index[v])) for v in chosen])] if k else []
+        result = run_cmaps("intersurface", str(HIGHER / name), str(path), *arguments, "-o", tmp + "/out")
+        if result.get("error"):
+            error = "failed"
+        else:
+            on_b = obj_positions(tmp + "/out/A_on_B.obj")
+            error = f"{100 * np.linalg.norm(on_b - moved[new_index], axis=1).mean() / diagonal:.1f} %"
+        rows.append(row(label, result, f" {k} true pairs; mean error {error} of the diagonal"))
+        print(rows[-1], flush=True)
+    return rows
 
 
 def obj_positions(path):
@@ -114,20 +139,10 @@ def main():
                                tmp + "/out")
             lines.append(row(f"{a} - {b}", result, " 4 axis-extreme pairs"))
             print(lines[-1], flush=True)
-        # Ground truth: the torus against its stretched, re-indexed copy.
-        path, new_index, moved = stretched_torus(tmp)
-        diagonal = np.linalg.norm(moved.max(axis=0) - moved.min(axis=0))
-        for k in (0, 8, 16):
-            chosen = np.random.default_rng(5).choice(len(new_index), k, replace=False)
-            arguments = ["--features", write_features(tmp, [(int(v), int(new_index[v])) for v in chosen])] if k else []
-            result = run_cmaps("intersurface", str(HIGHER / "torus.obj"), str(path), *arguments, "-o", tmp + "/out")
-            if result.get("error"):
-                error = "failed"
-            else:
-                on_b = obj_positions(tmp + "/out/A_on_B.obj")
-                error = f"{100 * np.linalg.norm(on_b - moved[new_index], axis=1).mean() / diagonal:.1f} %"
-            lines.append(row("torus - stretched copy", result, f" {k} true pairs; mean error {error} of the diagonal"))
-            print(lines[-1], flush=True)
+        # Ground truth: a mesh against its stretched (genus 3 and 4: also bent), re-indexed copy.
+        lines += truth_rows(tmp, "torus.obj", "torus - stretched copy", (0, 8, 16))
+        lines += truth_rows(tmp, "genus3.off", "genus3 - stretched, bent copy", (0, 12), bend=0.3)
+        lines += truth_rows(tmp, "fertility.off", "fertility - stretched, bent copy", (0, 12), bend=0.3)
         # Holes: two on each mesh (the triangles around two far-apart vertices removed).
         torus, knot = (_native.read_mesh(str(HIGHER / name)) for name in ("torus.obj", "knot.obj"))
         holed_torus = holed(*torus, farthest_points(torus[0], 2))
@@ -158,7 +173,7 @@ def guide_sweep():
     the partition's handles match."""
     vertices, triangles = _native.read_mesh(str(HIGHER / "torus.obj"))
     with tempfile.TemporaryDirectory() as tmp:
-        _, new_index, moved = stretched_torus(tmp)
+        _, new_index, moved = stretched_copy(tmp)
     stretched = (moved, new_index[triangles])
     diagonal = np.linalg.norm(moved.max(axis=0) - moved.min(axis=0))
     sets = [(f"random (seed {s})", np.random.default_rng(s).choice(len(vertices), k, replace=False))

@@ -28,12 +28,10 @@ std::string surface_points_text(const std::vector<cmaps::SurfacePoint>& points) 
   return text;
 }
 
-// remesh_features.json: each pair's remesh vertex, by its name in the
-// features file (the map's added pairs as "added <k>").
+// remesh_features.json: each given pair's remesh vertex, by its name in the features file.
 std::string remesh_features_text(const std::vector<std::string>& names, const cmaps::PairRemesh& remesh) {
   JsonObject vertices;
-  for (std::size_t k = 0; k < remesh.feature_vertices.size(); ++k)
-    vertices.add(k < names.size() ? names[k] : "added " + std::to_string(k - names.size()), remesh.feature_vertices[k]);
+  for (std::size_t k = 0; k < remesh.feature_vertices.size(); ++k) vertices.add(names[k], remesh.feature_vertices[k]);
   return vertices.str();
 }
 
@@ -60,9 +58,11 @@ void run_intersurface(const Arguments& args, Outcome& out) {
                        " and " + std::to_string(result.b_to_a.size()) + " images for " +
                        std::to_string(a.vertices.size()) + " and " + std::to_string(b.vertices.size()) + " vertices");
 
+  // Only the given pairs are held: locking the added ones too (arbitrary
+  // points matched by position) folded as many or more remesh triangles.
   std::optional<cmaps::PairRemesh> remesh;
   if (args.remesh_given)
-    remesh = cmaps::remesh_pair(a, b, result.a_to_b, result.b_to_a, result.features, args.remesh * args.remesh + 2);
+    remesh = cmaps::remesh_pair(a, b, result.a_to_b, result.b_to_a, features, args.remesh * args.remesh + 2);
 
   namespace fs = std::filesystem;
   std::error_code error;
