@@ -128,7 +128,7 @@ std::vector<int> Side::sides_of(const std::vector<int>& nodes, int vertices, con
     if (d > dist[u]) continue;
     if (waiting.count(u) && waiting[u] > 0) waiting[u] = 0, --unsettled;
     for (int w : mesh.ring(u)) {
-      if (on_path[w] || crossed.count(mesh.edge(u, w))) continue;
+      if (on_path[w] || (!crossed.empty() && crossed.count(mesh.edge(u, w)))) continue;
       const double nd = d + (mesh.position(w) - mesh.position(u)).norm();
       if (nd < dist[w]) {
         dist[w] = nd, side[w] = side[u];

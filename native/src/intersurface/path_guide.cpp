@@ -60,11 +60,12 @@ Vec3 centroid(const std::vector<Vec3>& points) {
   return c / double(std::max<size_t>(1, points.size()));
 }
 
-double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
+// Squared, so the searches below compare without a square root per segment.
+double squared_distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
   const Vec3 d = b - a;
   const double length = d.squaredNorm();
   const double t = length > 0 ? std::clamp((p - a).dot(d) / length, 0.0, 1.0) : 0.0;
-  return (p - (a + t * d)).norm();
+  return (p - (a + t * d)).squaredNorm();
 }
 
 }  // namespace
@@ -143,12 +144,12 @@ std::function<double(const Vec3&)> PathGuide::near(const std::vector<Vec3>& a_pa
     int coarse = 0;
     double nearest = std::numeric_limits<double>::infinity();
     for (int i = 0; i + 1 < n; i += step) {
-      const double d = distance_to_segment(p, path[i], path[std::min(i + step, n - 1)]);
+      const double d = squared_distance_to_segment(p, path[i], path[std::min(i + step, n - 1)]);
       if (d < nearest) nearest = d, coarse = i;
     }
     for (int i = std::max(0, coarse - step); i + 1 < n && i < coarse + 2 * step; ++i)
-      nearest = std::min(nearest, distance_to_segment(p, path[i], path[i + 1]));
-    return 1 + kPull * nearest / scale_a_;
+      nearest = std::min(nearest, squared_distance_to_segment(p, path[i], path[i + 1]));
+    return 1 + kPull * std::sqrt(nearest) / scale_a_;
   };
 }
 

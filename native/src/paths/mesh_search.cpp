@@ -49,7 +49,8 @@ std::vector<int> shortest_path(const EditableMesh& mesh, int source, int target,
     return f > 0 ? f : f = (*rules.step_factor)(p);
   };
 
-  auto relax = [&](int u, int w) {
+  // pu: u's position, computed once per expansion.
+  auto relax = [&](int u, const Vec3& pu, int w) {
     if (w == source || closed[w]) return;
     if (w == target) {
       if (rules.enter && !rules.enter->allows(u)) return;
@@ -59,7 +60,7 @@ std::vector<int> shortest_path(const EditableMesh& mesh, int source, int target,
       return;
     }
     if (u == source && rules.leave && !rules.leave->allows(w)) return;
-    const Vec3 pw = node_position(mesh, w, vertices), pu = node_position(mesh, u, vertices);
+    const Vec3 pw = node_position(mesh, w, vertices);
     double step = (pw - pu).norm();
     if (u >= vertices || w >= vertices) step *= 1 + rules.midpoint_penalty;
     if (rules.step_factor) step *= 0.5 * (factor_at(u, pu) + factor_at(w, pw));
@@ -76,15 +77,16 @@ std::vector<int> shortest_path(const EditableMesh& mesh, int source, int target,
     if (closed[u]) continue;
     closed[u] = 1;
     if (u == target) break;
+    const Vec3 pu = node_position(mesh, u, vertices);
     if (u < vertices) {
       // A vertex reaches its ring and the midpoints of the opposite edges.
       for (int f : mesh.faces_of(u)) {
         const Triangle& t = mesh.triangles()[f];
         const int k = t[0] == u ? 0 : t[1] == u ? 1 : 2;
         const int b = t[(k + 1) % 3], c = t[(k + 2) % 3];
-        relax(u, b);
-        relax(u, c);
-        if (rules.midpoints) relax(u, vertices + mesh.face_edges(f)[(k + 1) % 3]);
+        relax(u, pu, b);
+        relax(u, pu, c);
+        if (rules.midpoints) relax(u, pu, vertices + mesh.face_edges(f)[(k + 1) % 3]);
       }
     } else {
       // A midpoint reaches its edge's ends (once split, the halves are edges;
@@ -92,15 +94,15 @@ std::vector<int> shortest_path(const EditableMesh& mesh, int source, int target,
       // came from), the opposite vertices and the other edges' midpoints.
       const int e = u - vertices;
       const auto [x, y] = mesh.edge_vertices(e);
-      relax(u, x);
-      relax(u, y);
+      relax(u, pu, x);
+      relax(u, pu, y);
       for (int f : mesh.edge_faces(e)) {
         const Triangle& t = mesh.triangles()[f];
         const int k = t[0] != x && t[0] != y ? 0 : t[1] != x && t[1] != y ? 1 : 2;
-        relax(u, t[k]);
+        relax(u, pu, t[k]);
         if (rules.midpoints) {  // the two edges at the opposite corner c = t[k]
-          relax(u, vertices + mesh.face_edges(f)[k]);
-          relax(u, vertices + mesh.face_edges(f)[(k + 2) % 3]);
+          relax(u, pu, vertices + mesh.face_edges(f)[k]);
+          relax(u, pu, vertices + mesh.face_edges(f)[(k + 2) % 3]);
         }
       }
     }
