@@ -1,6 +1,7 @@
 """Inter-surface maps of genus >= 1 (issue 5): `cmaps intersurface` on pairs of equal genus from
 shared/meshes/higher-genus, plus the torus, genus3 and fertility (genus 4) against stretched, re-indexed
-copies of themselves, where the true correspondence is known. Rewrites the `intersurface-genus-benchmark` section of BENCHMARKS.md.
+copies of themselves, where the true correspondence is known. Rewrites the `intersurface-genus-benchmark`
+section of BENCHMARKS.md.
 
     python3 bench/intersurface_benchmark.py   (after building build/cmaps)
 """
