@@ -167,20 +167,41 @@ int CrossPatchMap::develop_triangle(int f, const std::array<double, 3>& weights,
 // What a vertex's trials share, gathered once per move: v's ring (v and its
 // neighbours) developed into the plane of v's base triangle, the base
 // vertices near (corners of that triangle and of its neighbours) and B's
-// vertices inside the ring, developed into that plane too.
+// vertices inside the ring, developed into that plane too, with the
+// triangles of B and split chords whose images move when they are re-hosted.
 struct CrossPatchMap::Ring {
   std::unordered_map<int, Vec2> at;
+  std::vector<std::array<Vec2, 3>> corners;  // per triangle around v (faces_of order), v at its own point
+  std::vector<int> slot;                     // per triangle around v: v's corner
+  std::vector<int> index;                    // 0, 1, ...: the triangles around v, for find_holder
   std::vector<Vec2> base_points;
-  std::vector<std::pair<int, Vec2>> hosted;  // vertex of B, its point
+  std::vector<std::pair<int, Vec2>> hosted;  // vertex of B (sorted), its point
+  std::vector<int> touched, touched_split;   // B's triangles and split chords at hosted vertices (sorted)
   Vec2 low, high;                            // the box around v's neighbours
 };
 
+namespace {
+
+void sort_unique(std::vector<int>& values) {
+  std::sort(values.begin(), values.end());
+  values.erase(std::unique(values.begin(), values.end()), values.end());
+}
+
+}  // namespace
+
 bool CrossPatchMap::gather_ring(int v, Ring& ring) const {
   const int t = home_[v];
+  const std::vector<int>& faces = a_.mesh.faces_of(v);
   ring.at[v] = point_[v];
-  for (int f : a_.mesh.faces_of(v))
+  for (int f : faces)
     for (int u : a_.mesh.triangles()[f])
       if (!ring.at.count(u) && !develop(u, t, point_[v], ring.at[u])) return false;
+  for (int f : faces) {
+    const Triangle& tri = a_.mesh.triangles()[f];
+    ring.corners.push_back({ring.at.at(tri[0]), ring.at.at(tri[1]), ring.at.at(tri[2])});
+    ring.slot.push_back(int(std::find(tri.begin(), tri.end(), v) - tri.begin()));
+    ring.index.push_back(int(ring.index.size()));
+  }
   ring.low = ring.high = point_[v];
   for (const auto& [u, p] : ring.at)
     if (u != v) ring.low = ring.low.cwiseMin(p), ring.high = ring.high.cwiseMax(p);
@@ -188,7 +209,7 @@ bool CrossPatchMap::gather_ring(int v, Ring& ring) const {
   for (int k = 0; k < 3; ++k)
     if (base_.neighbour(t, k) >= 0)
       for (const Vec2& c : kCanonicalCorner) ring.base_points.push_back(base_.from_neighbour(t, k, c));
-  for (int f : a_.mesh.faces_of(v))
+  for (int f : faces)
     for (int w : hosted_[f]) {
       Vec2 at = Vec2::Zero();
       double nearest = kChordInf;
@@ -198,26 +219,28 @@ bool CrossPatchMap::gather_ring(int v, Ring& ring) const {
           nearest = (developed - point_[v]).squaredNorm(), at = developed;
       }
       ring.hosted.push_back({w, at});
+      ring.touched.insert(ring.touched.end(), b_.mesh.faces_of(w).begin(), b_.mesh.faces_of(w).end());
+      ring.touched_split.insert(ring.touched_split.end(), split_b_.of_vertex[w].begin(),
+                                split_b_.of_vertex[w].end());
     }
+  std::sort(ring.hosted.begin(), ring.hosted.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  sort_unique(ring.touched);
+  sort_unique(ring.touched_split);
   return true;
 }
 
 CrossPatchMap::Move CrossPatchMap::trial(int v, const Vec2& q, const Ring& ring) const {
   Move m;
   const std::vector<int>& faces = a_.mesh.faces_of(v);
-  const auto corners = [&](int f, std::array<Vec2, 3>& c) {
-    const Triangle& t = a_.mesh.triangles()[f];
-    for (int k = 0; k < 3; ++k) c[k] = t[k] == v ? q : ring.at.at(t[k]);
-  };
+  std::vector<std::array<Vec2, 3>> laid = ring.corners;  // per ring triangle, v at q
+  for (int i = 0; i < int(laid.size()); ++i) laid[i][ring.slot[i]] = q;
   // Every ring triangle turns the right way and holds no base vertex (only
   // those in the box around the ring and q can be inside one).
   const Vec2 low = ring.low.cwiseMin(q), high = ring.high.cwiseMax(q);
   std::vector<Vec2> near;
   for (const Vec2& p : ring.base_points)
     if ((p.array() >= low.array()).all() && (p.array() <= high.array()).all()) near.push_back(p);
-  for (int f : faces) {
-    std::array<Vec2, 3> c;
-    corners(f, c);
+  for (const auto& c : laid) {
     if (orientation_ * twice_signed_area(c[0], c[1], c[2]) <= 0) return m;
     for (const Vec2& p : near) {
       const auto w = barycentric(p, c[0], c[1], c[2]);
@@ -228,21 +251,15 @@ CrossPatchMap::Move CrossPatchMap::trial(int v, const Vec2& q, const Ring& ring)
   m.image = image_on_b(m.home, m.point);
 
   // B's vertices inside the ring: the ring triangle holding each with v at q.
-  std::vector<int> touched, touched_split;
+  const auto corners = [&](int i, std::array<Vec2, 3>& c) { c = laid[i]; };
+  m.rehosted.reserve(ring.hosted.size());
   for (const auto& [w, at] : ring.hosted) {
     Holder holder;
-    find_holder(at, faces.begin(), faces.end(), corners, holder);
+    find_holder(at, ring.index.begin(), ring.index.end(), corners, holder);
     if (holder.score < -kInside) return m;  // outside the ring: a development gone wrong
-    const RefinedPoint best{holder.face, clamped(holder.weights)};
+    const RefinedPoint best{faces[holder.face], clamped(holder.weights)};
     m.rehosted.push_back({w, {best, image_in(a_, best.face, best.weights, 1 / scale_)}});
-    for (int g : b_.mesh.faces_of(w)) touched.push_back(g);
-    touched_split.insert(touched_split.end(), split_b_.of_vertex[w].begin(), split_b_.of_vertex[w].end());
   }
-  std::sort(m.rehosted.begin(), m.rehosted.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-  std::sort(touched.begin(), touched.end());
-  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
-  std::sort(touched_split.begin(), touched_split.end());
-  touched_split.erase(std::unique(touched_split.begin(), touched_split.end()), touched_split.end());
 
   double e = 0;
   for (int f : faces) {
@@ -260,9 +277,9 @@ CrossPatchMap::Move CrossPatchMap::trial(int v, const Vec2& q, const Ring& ring)
     }
     return scale_ * scale_ * triangle_energy(shape, image, &m.folded);
   };
-  for (int g : touched) e += back_energy(b_.mesh.triangles()[g], shape_b_[g]);
+  for (int g : ring.touched) e += back_energy(b_.mesh.triangles()[g], shape_b_[g]);
   for (int s : split_a_.of_vertex[v]) e += split_energy(split_a_, s, image_, v, &m.image, &m.folded);
-  for (int s : touched_split) e += back_energy(split_b_.corners[s], split_b_.shape[s]);
+  for (int s : ring.touched_split) e += back_energy(split_b_.corners[s], split_b_.shape[s]);
   m.energy = e;
   return m;
 }

@@ -99,12 +99,31 @@ class PatchEnergy {
     return inside <= kMaxRemapped;
   }
 
+  // What the trials of one vertex share: the local target vertices inside
+  // its ring (sorted) and their triangles (sorted), whose images move with it.
+  struct Hosted {
+    std::vector<int> vertices, triangles;
+  };
+  Hosted hosted(int v) const {
+    Hosted h;
+    for (int f : ring_[local_.at(v)])
+      for (int w : host_[f]) {
+        h.vertices.push_back(w);
+        h.triangles.insert(h.triangles.end(), target_ring_[w].begin(), target_ring_[w].end());
+      }
+    std::sort(h.vertices.begin(), h.vertices.end());
+    std::sort(h.triangles.begin(), h.triangles.end());
+    h.triangles.erase(std::unique(h.triangles.begin(), h.triangles.end()), h.triangles.end());
+    return h;
+  }
+
   // One descent step of mesh vertex v (descent_step.h).
   bool improve(int v) {
     if (!movable(v)) return false;
     const int i = local_.at(v);
     const Vec2 u0 = point_[i];
-    const Move current = trial(v, u0);
+    const Hosted inside = hosted(v);
+    const Move current = trial(v, u0, inside);
     if (!std::isfinite(current.energy)) return false;
     double length = 0;
     int count = 0;
@@ -112,7 +131,7 @@ class PatchEnergy {
       for (int j : triangle_[f])
         if (j != i) length += (point_[j] - u0).norm(), ++count;
     length /= std::max(count, 1);
-    const auto move = descent_step(u0, length, current, [&](const Vec2& p) { return trial(v, p); });
+    const auto move = descent_step(u0, length, current, [&](const Vec2& p) { return trial(v, p, inside); });
     if (!move) return false;
     apply(v, *move);
     return true;
@@ -131,9 +150,9 @@ class PatchEnergy {
   };
 
   // The energy of mesh vertex v's triangles in this patch and of the
-  // target's triangles around the target vertices they hold, with v at p;
-  // inf when one of v's triangles would turn over.
-  Move trial(int v, const Vec2& p) const {
+  // target's triangles around the target vertices they hold (`inside`,
+  // from hosted(v)), with v at p; inf when one of v's triangles would turn over.
+  Move trial(int v, const Vec2& p, const Hosted& inside) const {
     Move m;
     m.point = p;
     const int i = local_.at(v);
@@ -145,21 +164,16 @@ class PatchEnergy {
     };
     m.image = locate(*target_locator_, target_, p, scale_);
     // Target vertices inside the ring: their source triangle with v at p.
-    std::vector<int> touched;
-    for (int f : faces)
-      for (int w : host_[f]) {
-        Holder best;
-        find_holder(target_point_[w], faces.begin(), faces.end(), corners, best);
-        // The image lies in the moved triangle: v's position enters through its weight.
-        m.remapped.push_back({w, {image_in(source_, face_[best.face], clamped(best.weights), 1 / scale_), best.face}});
-        for (int g : target_ring_[w]) touched.push_back(g);
-      }
-    std::sort(m.remapped.begin(), m.remapped.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-    std::sort(touched.begin(), touched.end());
-    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    m.remapped.reserve(inside.vertices.size());
+    for (int w : inside.vertices) {
+      Holder best;
+      find_holder(target_point_[w], faces.begin(), faces.end(), corners, best);
+      // The image lies in the moved triangle: v's position enters through its weight.
+      m.remapped.push_back({w, {image_in(source_, face_[best.face], clamped(best.weights), 1 / scale_), best.face}});
+    }
     double e = 0;
     for (int f : faces) e += source_energy(f, i, &m.image);
-    for (int g : touched) e += scale_ * scale_ * target_energy(g, m.remapped);
+    for (int g : inside.triangles) e += scale_ * scale_ * target_energy(g, m.remapped);
     m.energy = e;
     return m;
   }
@@ -292,11 +306,12 @@ bool slide(const PathSlide& s, PatchEnergy& first, PatchEnergy& second) {
   if (!first.movable(s.vertex) || !second.movable(s.vertex)) return false;
   const Vec2 &a = first.uv().at(s.previous), &b = first.uv().at(s.next);
   const double at = (first.uv().at(s.vertex) - a).dot(b - a) / (b - a).squaredNorm();
+  const PatchEnergy::Hosted inside[2] = {first.hosted(s.vertex), second.hosted(s.vertex)};
   const auto trials = [&](double fraction) {
     std::array<PatchEnergy::Move, 2> moves;
     for (int k = 0; k < 2; ++k) {
       const Vec2 &p = energy[k]->uv().at(s.previous), &q = energy[k]->uv().at(s.next);
-      moves[k] = energy[k]->trial(s.vertex, p + fraction * (q - p));
+      moves[k] = energy[k]->trial(s.vertex, p + fraction * (q - p), inside[k]);
     }
     return moves;
   };

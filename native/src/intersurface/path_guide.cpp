@@ -25,13 +25,43 @@ std::vector<Vec3> samples(const TriangleMesh& mesh) {
   return out;
 }
 
-int nearest_index(const Vec3& p, const std::vector<Vec3>& points) {
-  int best = 0;
-  double d = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < int(points.size()); ++i)
-    if ((points[i] - p).squaredNorm() < d) d = (points[i] - p).squaredNorm(), best = i;
-  return best;
-}
+// Exact nearest-point queries over a fixed set: the points sorted along x,
+// scanned outwards from the query's x until the slab is wider than the
+// nearest distance found. Ties go to the lowest index, as a scan in order
+// would give them.
+class NearestPoint {
+ public:
+  explicit NearestPoint(const std::vector<Vec3>& points) : points_(points), order_(points.size()) {
+    for (int i = 0; i < int(order_.size()); ++i) order_[i] = i;
+    std::sort(order_.begin(), order_.end(), [&](int i, int j) { return points[i].x() < points[j].x(); });
+    x_.reserve(order_.size());
+    for (int i : order_) x_.push_back(points[i].x());
+  }
+
+  int operator()(const Vec3& p) const {
+    int best = 0;
+    double d = std::numeric_limits<double>::infinity();
+    const auto visit = [&](int k) {
+      const double dx = x_[k] - p.x();
+      if (dx * dx > d) return false;
+      const int i = order_[k];
+      const double di = (points_[i] - p).squaredNorm();
+      if (di < d || (di == d && i < best)) d = di, best = i;
+      return true;
+    };
+    const int start = int(std::lower_bound(x_.begin(), x_.end(), p.x()) - x_.begin());
+    for (int k = start; k < int(x_.size()) && visit(k); ++k) {
+    }
+    for (int k = start - 1; k >= 0 && visit(k); --k) {
+    }
+    return best;
+  }
+
+ private:
+  const std::vector<Vec3>& points_;
+  std::vector<int> order_;
+  std::vector<double> x_;  // per entry of order_
+};
 
 // The affine map [x 1] M = y of least weighted squares; false when it
 // mirrors or stretches more than kMaxAnisotropy.
@@ -104,19 +134,21 @@ void PathGuide::align_surfaces(const std::vector<Vec3>& on_a, const std::vector<
   const double pair_weight = n > 0 ? std::sqrt(double(from_a.size() + from_b.size()) / n) : 0;
   double last = std::numeric_limits<double>::infinity();
   Eigen::Affine3d kept = transform_;
+  const NearestPoint nearest_on_a(from_a);
   for (int round = 0; round < kClosestRounds; ++round) {
     std::vector<Vec3> mapped(from_b.size());
     for (std::size_t i = 0; i < from_b.size(); ++i) mapped[i] = to_a(from_b[i]);
+    const NearestPoint nearest_mapped(mapped);
     std::vector<Vec3> x, y;
     std::vector<double> weight;
     double distance = 0;
     for (std::size_t i = 0; i < from_b.size(); ++i) {
-      const Vec3& nearest_a = from_a[nearest_index(mapped[i], from_a)];
+      const Vec3& nearest_a = from_a[nearest_on_a(mapped[i])];
       x.push_back(from_b[i]), y.push_back(nearest_a), weight.push_back(1);
       distance += (nearest_a - mapped[i]).squaredNorm();
     }
     for (const Vec3& p : from_a) {
-      const int j = nearest_index(p, mapped);
+      const int j = nearest_mapped(p);
       x.push_back(from_b[j]), y.push_back(p), weight.push_back(1);
       distance += (mapped[j] - p).squaredNorm();
     }
