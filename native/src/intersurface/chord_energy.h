@@ -37,16 +37,21 @@ const T* find_remapped(const std::vector<std::pair<int, T>>& sorted, int w) {
   return it != sorted.end() && it->first == w ? &it->second : nullptr;
 }
 
+// The positions of the corners of `side`'s triangle f.
+inline std::array<Vec3, 3> corner_positions(const PartitionSide& side, int f) {
+  const Triangle& t = side.mesh.triangles()[f];
+  return {side.mesh.position(t[0]), side.mesh.position(t[1]), side.mesh.position(t[2])};
+}
+
 // Triangle f of `side` as the source of a map.
 inline SourceTriangle shape_of(const PartitionSide& side, int f) {
-  const Triangle& t = side.mesh.triangles()[f];
-  return source_triangle({side.mesh.position(t[0]), side.mesh.position(t[1]), side.mesh.position(t[2])});
+  const std::array<Vec3, 3> p = corner_positions(side, f);
+  return source_triangle({p[0], p[1], p[2]});
 }
 
 // The image of the point with weights w in `side`'s triangle `face`, scaled.
 inline Image image_in(const PartitionSide& side, int face, const std::array<double, 3>& w, double scale) {
-  const Triangle& t = side.mesh.triangles()[face];
-  const Vec3 &a = side.mesh.position(t[0]), &b = side.mesh.position(t[1]), &c = side.mesh.position(t[2]);
+  const auto [a, b, c] = corner_positions(side, face);
   return {scale * (w[0] * a + w[1] * b + w[2] * c), (b - a).cross(c - a).normalized()};
 }
 

@@ -7,6 +7,7 @@
 #include "common/parallel_for.h"
 #include "consistent_maps/errors.h"
 #include "intersurface/descent_step.h"
+#include "intersurface/map_gradient.h"
 
 namespace cmaps {
 namespace {
@@ -25,6 +26,7 @@ struct CrossPatchMap::Move {
   struct Rehost {
     RefinedPoint at;  // the vertex of B's new triangle of A
     Image back;       // its new image on A
+    Jacobian jacobian = Jacobian::Zero();  // the image's derivative by v's point (when a gradient is asked for)
   };
   int home = -1;
   Vec2 point = Vec2::Zero();
@@ -178,6 +180,7 @@ struct CrossPatchMap::Ring {
   std::vector<std::pair<int, Vec2>> hosted;  // vertex of B (sorted), its point
   std::vector<int> touched, touched_split;   // B's triangles and split chords at hosted vertices (sorted)
   Vec2 low, high;                            // the box around v's neighbours
+  double length = 0;                         // the mean distance from v to its neighbours
 };
 
 namespace {
@@ -204,7 +207,11 @@ bool CrossPatchMap::gather_ring(int v, Ring& ring) const {
   }
   ring.low = ring.high = point_[v];
   for (const auto& [u, p] : ring.at)
-    if (u != v) ring.low = ring.low.cwiseMin(p), ring.high = ring.high.cwiseMax(p);
+    if (u != v) {
+      ring.low = ring.low.cwiseMin(p), ring.high = ring.high.cwiseMax(p);
+      ring.length += (p - point_[v]).norm();
+    }
+  ring.length /= std::max<std::size_t>(1, ring.at.size() - 1);
   ring.base_points.assign(kCanonicalCorner, kCanonicalCorner + 3);
   for (int k = 0; k < 3; ++k)
     if (base_.neighbour(t, k) >= 0)
@@ -229,7 +236,7 @@ bool CrossPatchMap::gather_ring(int v, Ring& ring) const {
   return true;
 }
 
-CrossPatchMap::Move CrossPatchMap::trial(int v, const Vec2& q, const Ring& ring) const {
+CrossPatchMap::Move CrossPatchMap::trial(int v, const Vec2& q, const Ring& ring, PointGradient* gradient) const {
   Move m;
   const std::vector<int>& faces = a_.mesh.faces_of(v);
   std::vector<std::array<Vec2, 3>> laid = ring.corners;  // per ring triangle, v at q
@@ -258,28 +265,53 @@ CrossPatchMap::Move CrossPatchMap::trial(int v, const Vec2& q, const Ring& ring)
     find_holder(at, ring.index.begin(), ring.index.end(), corners, holder);
     if (holder.score < -kInside) return m;  // outside the ring: a development gone wrong
     const RefinedPoint best{faces[holder.face], clamped(holder.weights)};
-    m.rehosted.push_back({w, {best, image_in(a_, best.face, best.weights, 1 / scale_)}});
+    Move::Rehost rehost{best, image_in(a_, best.face, best.weights, 1 / scale_)};
+    if (gradient)
+      rehost.jacobian = held_point_jacobian(laid[holder.face], ring.slot[holder.face], holder.weights,
+                                            corner_positions(a_, best.face), 1 / scale_);
+    m.rehosted.push_back({w, rehost});
   }
 
+  Jacobian moved = Jacobian::Zero();  // m.image's derivative by q
+  if (gradient)
+    moved = image_jacobian(q, m.image.position, 1e-4 * ring.length, [&](const Vec2& x) -> std::optional<Vec3> {
+      int home;
+      Vec2 at;
+      if (!base_.home_of(home_[v], x, home, at)) return std::nullopt;
+      return image_on_b(home, at).position;
+    });
   double e = 0;
-  for (int f : faces) {
-    const Triangle& tri = a_.mesh.triangles()[f];
+  // One chord triangle's energy, weighted, and its derivative through the corners moving with q.
+  const auto charge = [&](const SourceTriangle& shape, const Image* image[3], const Jacobian* jacobian[3],
+                          double weight) {
+    e += weight * triangle_energy(shape, image, &m.folded);
+    if (gradient) add_chord_gradient(shape, image, jacobian, weight, *gradient);
+  };
+  // A triangle of A with v's image after the move.
+  const auto forward = [&](const Triangle& tri, const SourceTriangle& shape) {
     const Image* image[3];
-    for (int k = 0; k < 3; ++k) image[k] = tri[k] == v ? &m.image : &image_[tri[k]];
-    e += triangle_energy(shape_a_[f], image, &m.folded);
-  }
+    const Jacobian* jacobian[3];
+    for (int k = 0; k < 3; ++k) {
+      image[k] = tri[k] == v ? &m.image : &image_[tri[k]];
+      jacobian[k] = tri[k] == v ? &moved : nullptr;
+    }
+    charge(shape, image, jacobian, 1);
+  };
   // A triangle of B with its corners' images after the move.
-  const auto back_energy = [&](const Triangle& tri, const SourceTriangle& shape) {
+  const auto back = [&](const Triangle& tri, const SourceTriangle& shape) {
     const Image* image[3];
+    const Jacobian* jacobian[3];
     for (int k = 0; k < 3; ++k) {
       const Move::Rehost* rehost = find_remapped(m.rehosted, tri[k]);
       image[k] = rehost ? &rehost->back : &back_image_[tri[k]];
+      jacobian[k] = rehost ? &rehost->jacobian : nullptr;
     }
-    return scale_ * scale_ * triangle_energy(shape, image, &m.folded);
+    charge(shape, image, jacobian, scale_ * scale_);
   };
-  for (int g : ring.touched) e += back_energy(b_.mesh.triangles()[g], shape_b_[g]);
-  for (int s : split_a_.of_vertex[v]) e += split_energy(split_a_, s, image_, v, &m.image, &m.folded);
-  for (int s : ring.touched_split) e += back_energy(split_b_.corners[s], split_b_.shape[s]);
+  for (int f : faces) forward(a_.mesh.triangles()[f], shape_a_[f]);
+  for (int g : ring.touched) back(b_.mesh.triangles()[g], shape_b_[g]);
+  for (int s : split_a_.of_vertex[v]) forward(split_a_.corners[s], split_a_.shape[s]);
+  for (int s : ring.touched_split) back(split_b_.corners[s], split_b_.shape[s]);
   m.energy = e;
   return m;
 }
@@ -292,17 +324,20 @@ bool CrossPatchMap::improve(int v) {
   Ring ring;
   if (!gather_ring(v, ring)) return false;
   const Vec2 x0 = point_[v];
-  const Move current = trial(v, x0, ring);
+  PointGradient gradient;
+  const Move current = trial(v, x0, ring, &gradient);
   if (!std::isfinite(current.energy)) return false;
-  double length = 0;
-  for (const auto& [u, p] : ring.at) length += (p - x0).norm();
-  length /= std::max<std::size_t>(1, ring.at.size() - 1);
   const auto at = [&](const Vec2& q) { return trial(v, q, ring); };
   // A fold's flat charge has no gradient: a ring holding one first steps to
   // unfold (kept, as any step, only if the energy drops).
   std::optional<Move> move;
-  if (current.folded > 0) move = descent_step(x0, length, current, at, [](const Move& m) { return m.folded; });
-  if (!move) move = descent_step(x0, length, current, at);
+  if (current.folded > 0) move = descent_step(x0, gradient.folded, ring.length, kScaledHalvings, current, at);
+  if (!move)
+    move = newton_step(x0, gradient.energy, ring.length, current, at, [&](const Vec2& q) -> std::optional<Vec2> {
+      PointGradient there;
+      if (!std::isfinite(trial(v, q, ring, &there).energy)) return std::nullopt;
+      return there.energy;
+    });
   if (!move || turns_ring(v, *move)) return false;
   apply(v, *move);
   return true;

@@ -27,6 +27,7 @@
 
 #include "intersurface/base_complex.h"
 #include "intersurface/chord_energy.h"
+#include "intersurface/map_gradient.h"
 #include "intersurface/patch_locator.h"
 #include "intersurface/split_triangles.h"
 
@@ -87,8 +88,9 @@ class CrossPatchMap {
   // that is no base vertex (base vertices lie in several base triangles);
   // that plane, or -1 when a corner cannot be developed.
   int develop_triangle(int f, const std::array<double, 3>& weights, std::array<Vec2, 3>& corners) const;
-  // v moved to q of its ring's plane: the move, with its energy (inf when not allowed).
-  Move trial(int v, const Vec2& q, const Ring& ring) const;
+  // v moved to q of its ring's plane: the move, with its energy (inf when
+  // not allowed); with `gradient`, also the energy's derivative by q.
+  Move trial(int v, const Vec2& q, const Ring& ring, PointGradient* gradient = nullptr) const;
   void apply(int v, const Move& move);
   // B's point (a base triangle and canonical point of B's embedding) on A,
   // among A's triangles around `near_face`: the triangle and weights.

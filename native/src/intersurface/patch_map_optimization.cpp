@@ -8,6 +8,7 @@
 #include "common/parallel_for.h"
 #include "intersurface/chord_energy.h"
 #include "intersurface/descent_step.h"
+#include "intersurface/map_gradient.h"
 #include "intersurface/patch_embedding.h"
 #include "intersurface/patch_locator.h"
 
@@ -34,6 +35,8 @@ class PatchEnergy {
     for (int i = 0; i < int(vertex_.size()); ++i) local_[vertex_[i]] = i;
     point_.resize(vertex_.size());
     image_.resize(vertex_.size());
+    active_.assign(vertex_.size(), 0);
+    changed_.assign(vertex_.size(), 1);
     for (int i = 0; i < int(vertex_.size()); ++i) {
       point_[i] = uv.at(vertex_[i]);
       image_[i] = locate(*target_locator_, target, point_[i], scale);
@@ -119,19 +122,15 @@ class PatchEnergy {
 
   // One descent step of mesh vertex v (descent_step.h).
   bool improve(int v) {
-    if (!movable(v)) return false;
     const int i = local_.at(v);
+    if (!active_[i] || !movable(v)) return false;
     const Vec2 u0 = point_[i];
     const Hosted inside = hosted(v);
-    const Move current = trial(v, u0, inside);
+    PointGradient gradient;
+    const Move current = trial(v, u0, inside, &gradient);
     if (!std::isfinite(current.energy)) return false;
-    double length = 0;
-    int count = 0;
-    for (int f : ring_[i])
-      for (int j : triangle_[f])
-        if (j != i) length += (point_[j] - u0).norm(), ++count;
-    length /= std::max(count, 1);
-    const auto move = descent_step(u0, length, current, [&](const Vec2& p) { return trial(v, p, inside); });
+    const auto move = descent_step(u0, gradient.energy, ring_length(i, u0), kGuessedHalvings, current,
+                                   [&](const Vec2& p) { return trial(v, p, inside); });
     if (!move) return false;
     apply(v, *move);
     return true;
@@ -141,6 +140,7 @@ class PatchEnergy {
   struct Remap {
     Image image;  // the target vertex's new image
     int host;     // its new source triangle (local)
+    Jacobian jacobian = Jacobian::Zero();  // the image's derivative by v's point (when a gradient is asked for)
   };
   struct Move {
     Vec2 point;
@@ -151,8 +151,9 @@ class PatchEnergy {
 
   // The energy of mesh vertex v's triangles in this patch and of the
   // target's triangles around the target vertices they hold (`inside`,
-  // from hosted(v)), with v at p; inf when one of v's triangles would turn over.
-  Move trial(int v, const Vec2& p, const Hosted& inside) const {
+  // from hosted(v)), with v at p; inf when one of v's triangles would turn
+  // over. With `gradient`, also its derivative by p.
+  Move trial(int v, const Vec2& p, const Hosted& inside, PointGradient* gradient = nullptr) const {
     Move m;
     m.point = p;
     const int i = local_.at(v);
@@ -169,17 +170,69 @@ class PatchEnergy {
       Holder best;
       find_holder(target_point_[w], faces.begin(), faces.end(), corners, best);
       // The image lies in the moved triangle: v's position enters through its weight.
-      m.remapped.push_back({w, {image_in(source_, face_[best.face], clamped(best.weights), 1 / scale_), best.face}});
+      Remap remap{image_in(source_, face_[best.face], clamped(best.weights), 1 / scale_), best.face};
+      if (gradient) {
+        std::array<Vec2, 3> c;
+        corners(best.face, c);
+        const int slot = int(std::find(triangle_[best.face].begin(), triangle_[best.face].end(), i) -
+                             triangle_[best.face].begin());
+        remap.jacobian = held_point_jacobian(c, slot, best.weights, corner_positions(source_, face_[best.face]),
+                                              1 / scale_);
+      }
+      m.remapped.push_back({w, remap});
     }
     double e = 0;
     for (int f : faces) e += source_energy(f, i, &m.image);
     for (int g : inside.triangles) e += scale_ * scale_ * target_energy(g, m.remapped);
     m.energy = e;
+    if (gradient && std::isfinite(e)) {
+      const Jacobian moved = image_jacobian(p, m.image.position, 1e-4 * ring_length(i, p), [&](const Vec2& x) {
+        return std::optional<Vec3>(locate(*target_locator_, target_, x, scale_).position);
+      });
+      for (int f : faces) {
+        const Image* image[3];
+        const Jacobian* jacobian[3];
+        for (int k = 0; k < 3; ++k) {
+          const bool at_v = triangle_[f][k] == i;
+          image[k] = at_v ? &m.image : &image_[triangle_[f][k]];
+          jacobian[k] = at_v ? &moved : nullptr;
+        }
+        add_chord_gradient(shape_[f], image, jacobian, 1, *gradient);
+      }
+      for (int g : inside.triangles) {
+        const Image* image[3];
+        const Jacobian* jacobian[3];
+        for (int k = 0; k < 3; ++k) {
+          const Remap* remap = find_remapped(m.remapped, back_triangle_[g][k]);
+          image[k] = remap ? &remap->image : &back_image_[back_triangle_[g][k]];
+          jacobian[k] = remap ? &remap->jacobian : nullptr;
+        }
+        add_chord_gradient(back_shape_[g], image, jacobian, scale_ * scale_, *gradient);
+      }
+    }
     return m;
+  }
+
+  // The mean distance from local vertex i, at p, to its ring's other corners.
+  double ring_length(int i, const Vec2& p) const {
+    double length = 0;
+    int count = 0;
+    for (int f : ring_[i])
+      for (int j : triangle_[f])
+        if (j != i) length += (point_[j] - p).norm(), ++count;
+    return length / std::max(count, 1);
+  }
+
+  // Starts a sweep: the vertices to try are those whose ring changed since the last.
+  void begin_sweep() {
+    active_.swap(changed_);
+    std::fill(changed_.begin(), changed_.end(), 0);
   }
 
   void apply(int v, const Move& m) {
     const int i = local_.at(v);
+    for (int f : ring_[i])
+      for (int j : triangle_[f]) changed_[j] = 1;
     uv_[v] = point_[i] = m.point;
     image_[i] = m.image;
     for (int f : ring_[i]) host_[f].clear();
@@ -265,6 +318,7 @@ class PatchEnergy {
   std::vector<SourceTriangle> shape_;
   std::vector<std::vector<int>> ring_;  // per local vertex: its local triangles
   std::vector<std::vector<int>> host_;  // per local triangle: the local target vertices inside it
+  std::vector<char> active_, changed_;  // per local vertex: to try in this sweep, in the next
   // The target's side, local.
   std::vector<Vec2> target_point_;
   std::vector<Image> back_image_;
@@ -425,6 +479,7 @@ MapOptimization optimize_patch_map(const PartitionSide& source, PatchParameteriz
         patches, threads,
         [&](int t) {
           if (settled[t]) return;
+          energy[t]->begin_sweep();
           for (int v : free[t]) moved[t] += energy[t]->improve(v);
         },
         1);
