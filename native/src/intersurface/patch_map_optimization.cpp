@@ -103,13 +103,21 @@ class PatchEnergy {
   }
 
   // What the trials of one vertex share: the local target vertices inside
-  // its ring (sorted) and their triangles (sorted), whose images move with it.
+  // its ring (sorted) and their triangles (sorted), whose images move with
+  // it, and the mean distance from it to its ring's other corners.
   struct Hosted {
     std::vector<int> vertices, triangles;
+    double length = 0;
   };
   Hosted hosted(int v) const {
     Hosted h;
-    for (int f : ring_[local_.at(v)])
+    const int i = local_.at(v);
+    int count = 0;
+    for (int f : ring_[i])
+      for (int j : triangle_[f])
+        if (j != i) h.length += (point_[j] - point_[i]).norm(), ++count;
+    h.length /= std::max(count, 1);
+    for (int f : ring_[i])
       for (int w : host_[f]) {
         h.vertices.push_back(w);
         h.triangles.insert(h.triangles.end(), target_ring_[w].begin(), target_ring_[w].end());
@@ -129,7 +137,7 @@ class PatchEnergy {
     PointGradient gradient;
     const Move current = trial(v, u0, inside, &gradient);
     if (!std::isfinite(current.energy)) return false;
-    const auto move = descent_step(u0, gradient.energy, ring_length(i, u0), kGuessedHalvings, current,
+    const auto move = descent_step(u0, gradient.energy, inside.length, kGuessedHalvings, current,
                                    [&](const Vec2& p) { return trial(v, p, inside); });
     if (!move) return false;
     apply(v, *move);
@@ -181,46 +189,16 @@ class PatchEnergy {
       }
       m.remapped.push_back({w, remap});
     }
-    double e = 0;
-    for (int f : faces) e += source_energy(f, i, &m.image);
-    for (int g : inside.triangles) e += scale_ * scale_ * target_energy(g, m.remapped);
-    m.energy = e;
-    if (gradient && std::isfinite(e)) {
-      const Jacobian moved = image_jacobian(p, m.image.position, 1e-4 * ring_length(i, p), [&](const Vec2& x) {
+    Jacobian moved = Jacobian::Zero();  // m.image's derivative by p
+    if (gradient)
+      moved = image_jacobian(p, m.image.position, 1e-4 * inside.length, [&](const Vec2& x) {
         return std::optional<Vec3>(locate(*target_locator_, target_, x, scale_).position);
       });
-      for (int f : faces) {
-        const Image* image[3];
-        const Jacobian* jacobian[3];
-        for (int k = 0; k < 3; ++k) {
-          const bool at_v = triangle_[f][k] == i;
-          image[k] = at_v ? &m.image : &image_[triangle_[f][k]];
-          jacobian[k] = at_v ? &moved : nullptr;
-        }
-        add_chord_gradient(shape_[f], image, jacobian, 1, *gradient);
-      }
-      for (int g : inside.triangles) {
-        const Image* image[3];
-        const Jacobian* jacobian[3];
-        for (int k = 0; k < 3; ++k) {
-          const Remap* remap = find_remapped(m.remapped, back_triangle_[g][k]);
-          image[k] = remap ? &remap->image : &back_image_[back_triangle_[g][k]];
-          jacobian[k] = remap ? &remap->jacobian : nullptr;
-        }
-        add_chord_gradient(back_shape_[g], image, jacobian, scale_ * scale_, *gradient);
-      }
-    }
+    double e = 0;
+    for (int f : faces) e += source_energy(f, i, &m.image, &moved, gradient);
+    for (int g : inside.triangles) e += scale_ * scale_ * target_energy(g, m.remapped, gradient);
+    m.energy = e;
     return m;
-  }
-
-  // The mean distance from local vertex i, at p, to its ring's other corners.
-  double ring_length(int i, const Vec2& p) const {
-    double length = 0;
-    int count = 0;
-    for (int f : ring_[i])
-      for (int j : triangle_[f])
-        if (j != i) length += (point_[j] - p).norm(), ++count;
-    return length / std::max(count, 1);
   }
 
   // Starts a sweep: the vertices to try are those whose ring changed since the last.
@@ -280,19 +258,32 @@ class PatchEnergy {
     return image_in(side, face, w, scale);
   }
 
-  // Local triangle f's energy, local vertex i's image replaced by q (none when i < 0).
-  double source_energy(int f, int i, const Image* q) const {
+  // Local triangle f's energy, local vertex i's image replaced by q (none
+  // when i < 0); with `gradient`, its derivative added, q moving by `moved`.
+  double source_energy(int f, int i, const Image* q, const Jacobian* moved = nullptr,
+                       PointGradient* gradient = nullptr) const {
     const Image* image[3];
-    for (int k = 0; k < 3; ++k) image[k] = triangle_[f][k] == i ? q : &image_[triangle_[f][k]];
+    const Jacobian* jacobian[3];
+    for (int k = 0; k < 3; ++k) {
+      image[k] = triangle_[f][k] == i ? q : &image_[triangle_[f][k]];
+      jacobian[k] = triangle_[f][k] == i ? moved : nullptr;
+    }
+    if (gradient) add_chord_gradient(shape_[f], image, jacobian, 1, *gradient);
     return triangle_energy(shape_[f], image);
   }
 
-  double target_energy(int g, const std::vector<std::pair<int, Remap>>& remapped) const {
+  // Local target triangle g's energy with the re-mapped images; with
+  // `gradient`, its derivative (weighted as the trial weighs it) added.
+  double target_energy(int g, const std::vector<std::pair<int, Remap>>& remapped,
+                       PointGradient* gradient = nullptr) const {
     const Image* image[3];
+    const Jacobian* jacobian[3];
     for (int k = 0; k < 3; ++k) {
       const Remap* remap = find_remapped(remapped, back_triangle_[g][k]);
       image[k] = remap ? &remap->image : &back_image_[back_triangle_[g][k]];
+      jacobian[k] = remap ? &remap->jacobian : nullptr;
     }
+    if (gradient) add_chord_gradient(back_shape_[g], image, jacobian, scale_ * scale_, *gradient);
     return triangle_energy(back_shape_[g], image);
   }
 
