@@ -316,6 +316,16 @@ CrossPatchMap::Move CrossPatchMap::trial(int v, const Vec2& q, const Ring& ring,
   return m;
 }
 
+std::optional<CrossPatchMap::RingTrial> CrossPatchMap::ring_trial(int v, const Vec2& offset, bool gradient) const {
+  Ring ring;
+  if (fixed_[v] || !gather_ring(v, ring)) return std::nullopt;
+  RingTrial result;
+  const Move m = trial(v, point_[v] + offset, ring, gradient ? &result.gradient : nullptr);
+  if (!std::isfinite(m.energy)) return std::nullopt;
+  result.energy = m.energy, result.folded = m.folded, result.length = ring.length;
+  return result;
+}
+
 bool CrossPatchMap::improve(int v) {
   if (fixed_[v]) return false;
   std::size_t inside = 0;

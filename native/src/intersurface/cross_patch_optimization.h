@@ -22,6 +22,7 @@
 // among the ring's triangles when a ring moves), which gives the map back.
 #pragma once
 #include <functional>
+#include <optional>
 #include <unordered_map>
 #include <vector>
 
@@ -57,6 +58,17 @@ class CrossPatchMap {
   // triangles, the centres of B's): they are no part of the surfaces.
   int turned_triangles() const;
   int stray_hosts() const;
+
+  // A's free vertex v tried at its point moved by `offset` in its ring's
+  // plane, what each descent step weighs (for tests of its derivative):
+  // the ring's energy, its folded chords' area, the mean distance from v to
+  // its neighbours there and, with `gradient`, both derivatives by the
+  // point. Nothing for fixed vertices or refused points.
+  struct RingTrial {
+    double energy = 0, folded = 0, length = 0;
+    PointGradient gradient;
+  };
+  std::optional<RingTrial> ring_trial(int v, const Vec2& offset, bool gradient) const;
 
   // Per input vertex of A: its image on B's input triangles (features exact).
   std::vector<InputLocation> map_a(const TriangleMesh& b_input, int threads) const;
