@@ -120,7 +120,8 @@ TEST(PatchMapOptimization, PathVerticesSlideAlongTheirPathsAlikeInBothPatches) {
       EXPECT_NEAR(fraction[0][i], fraction[1][i], 1e-9);
       EXPECT_GT(fraction[0][i], fraction[0][i - 1]);
       const auto& arc = arc_length.uv[beside[0]];
-      const double original = (arc.at(path[i]) - arc.at(path.front())).norm() / (arc.at(path.back()) - arc.at(path.front())).norm();
+      const double original =
+          (arc.at(path[i]) - arc.at(path.front())).norm() / (arc.at(path.back()) - arc.at(path.front())).norm();
       slid += std::abs(fraction[0][i] - original) > 1e-3;
       ++checked;
     }
