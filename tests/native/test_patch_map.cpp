@@ -202,6 +202,36 @@ TEST(PatchParameterization, TurnedTrianglesAreCounted) {
   EXPECT_LE(turned, int(side.mesh.ring(v).size()));
 }
 
+TEST(CrossPatchMap, TurnedTrianglesAreCounted) {
+  // What IntersurfaceResult::map_flipped reports for A: 0 for the
+  // embeddings as computed, the triangles turned over once an interior
+  // vertex of A is pushed past a neighbour. (Every vertex of B is hosted
+  // anew then, and the fan around the pushed vertex still covers its ring,
+  // so none strays.)
+  CactusPoses poses;
+  ConsistentPartition& p = poses.p;
+  PatchParameterization uv_a = parameterize_patches(p.sides[0], p);
+  const PatchParameterization uv_b = parameterize_patches(p.sides[1], p);
+  EXPECT_EQ(CrossPatchMap(p, uv_a, uv_b).turned_triangles(), 0);
+  EXPECT_EQ(CrossPatchMap(p, uv_a, uv_b).stray_hosts(), 0);
+  const PartitionSide& a = p.sides[0];
+  std::vector<char> on_path(a.mesh.vertex_count(), 0);
+  for (const auto& path : a.paths)
+    for (int v : path) on_path[v] = 1;
+  std::unordered_map<int, Vec2>& patch = uv_a.uv[0];
+  const auto interior = std::find_if(patch.begin(), patch.end(), [&](const auto& x) {
+    return !on_path[x.first] && std::none_of(a.mesh.ring(x.first).begin(), a.mesh.ring(x.first).end(),
+                                             [&](int n) { return on_path[n]; });
+  });
+  ASSERT_NE(interior, patch.end());
+  const int v = interior->first, n = a.mesh.ring(v).front();
+  patch[v] = patch.at(n) + 2 * (patch.at(n) - patch.at(v));
+  const CrossPatchMap broken(p, uv_a, uv_b);
+  EXPECT_GE(broken.turned_triangles(), 1);
+  EXPECT_LE(broken.turned_triangles(), int(a.mesh.ring(v).size()));
+  EXPECT_EQ(broken.stray_hosts(), 0);
+}
+
 TEST(CrossPatchMap, VerticesCrossPathsAndTheMapNearsTheTruth) {
   // The cactus poses' partition: its paths, traced on each pose alone, stop
   // being walls and the map moves toward the truth, staying bijective.

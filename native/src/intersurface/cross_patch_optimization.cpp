@@ -13,6 +13,18 @@ namespace cmaps {
 namespace {
 
 constexpr double kInside = 1e-9;  // a base vertex this far inside a ring triangle (weights) is inside
+constexpr double kOnEdge = 1e-9;  // a point this near a triangle (canonical side 1) lies on it, for stray_hosts
+
+// How far p lies outside triangle c (0 inside): the largest of its
+// distances beyond each side's line.
+double distance_outside(const Vec2& p, const std::array<Vec2, 3>& c) {
+  const auto weights = barycentric(p, c[0], c[1], c[2]);
+  const double twice_area = std::abs(twice_signed_area(c[0], c[1], c[2]));
+  double outside = 0;
+  for (int k = 0; k < 3; ++k)  // weight k times the height over the side opposite corner k
+    outside = std::max(outside, -weights[k] * twice_area / (c[(k + 1) % 3] - c[(k + 2) % 3]).norm());
+  return outside;
+}
 
 // The vertex of a refined point's triangle with the largest weight.
 int nearest_corner(const PartitionSide& side, const RefinedPoint& p) {
@@ -423,10 +435,8 @@ int CrossPatchMap::stray_hosts() const {
     Vec2 at;
     bool inside = false;
     for (const auto& [patch, p] : b_points_[w])
-      if (plane >= 0 && base_.develop(patch, p, plane, (c[0] + c[1] + c[2]) / 3, at)) {
-        const auto weights = barycentric(at, c[0], c[1], c[2]);
-        inside = inside || std::min({weights[0], weights[1], weights[2]}) >= -1e-9;
-      }
+      if (plane >= 0 && base_.develop(patch, p, plane, (c[0] + c[1] + c[2]) / 3, at))
+        inside = inside || distance_outside(at, c) <= kOnEdge;
     stray += !inside;
   }
   return stray;
