@@ -360,7 +360,7 @@ bool CrossPatchMap::improve(int v) {
       if (!std::isfinite(trial(v, q, ring, &there).energy)) return std::nullopt;
       return there.energy;
     });
-  if (!move || turns_ring(v, *move)) return false;
+  if (!move || breaks_invariants(v, *move)) return false;
   apply(v, *move);
   return true;
 }
@@ -415,14 +415,28 @@ int CrossPatchMap::turned_triangles() const {
   return count;
 }
 
-bool CrossPatchMap::turns_ring(int v, const Move& move) {
+bool CrossPatchMap::breaks_invariants(int v, const Move& move) {
   const int home = home_[v];
   const Vec2 point = point_[v];
   home_[v] = move.home, point_[v] = move.point;
   const std::vector<int>& faces = a_.mesh.faces_of(v);
-  const bool any = std::any_of(faces.begin(), faces.end(), [&](int f) { return !a_.in_fan(f) && turned(f); });
+  const bool broken =
+      std::any_of(faces.begin(), faces.end(), [&](int f) { return !a_.in_fan(f) && turned(f); }) ||
+      std::any_of(move.rehosted.begin(), move.rehosted.end(),
+                  [&](const auto& rehost) { return strays(rehost.first, rehost.second.at.face); });
   home_[v] = home, point_[v] = point;
-  return any;
+  return broken;
+}
+
+bool CrossPatchMap::strays(int w, int face) const {
+  std::array<Vec2, 3> c;
+  const int plane = develop_triangle(face, {1, 1, 1}, c);
+  Vec2 at;
+  for (const auto& [patch, p] : b_points_[w])
+    if (plane >= 0 && base_.develop(patch, p, plane, (c[0] + c[1] + c[2]) / 3, at) &&
+        distance_outside(at, c) <= kOnEdge)
+      return false;
+  return true;
 }
 
 int CrossPatchMap::stray_hosts() const {
@@ -430,14 +444,7 @@ int CrossPatchMap::stray_hosts() const {
   for (int w = 0; w < b_.mesh.vertex_count(); ++w) {
     const std::vector<int>& faces = b_.mesh.faces_of(w);
     if (std::all_of(faces.begin(), faces.end(), [&](int g) { return b_.in_fan(g); })) continue;
-    std::array<Vec2, 3> c;
-    const int plane = develop_triangle(host_[w].face, {1, 1, 1}, c);
-    Vec2 at;
-    bool inside = false;
-    for (const auto& [patch, p] : b_points_[w])
-      if (plane >= 0 && base_.develop(patch, p, plane, (c[0] + c[1] + c[2]) / 3, at))
-        inside = inside || distance_outside(at, c) <= kOnEdge;
-    stray += !inside;
+    stray += strays(w, host_[w].face);
   }
   return stray;
 }

@@ -93,10 +93,17 @@ class CrossPatchMap {
   // Whether A's triangle f turns the wrong way in the plane of its first
   // corner's base triangle (turned_triangles counts them).
   bool turned(int f) const;
-  // Whether a triangle around v would turn so with v moved as `move`. A
-  // move's ring is checked in v's own plane; a triangle at a base vertex
-  // (a cone point of the base mesh) can turn in its other corners' planes.
-  bool turns_ring(int v, const Move& move);
+  // Whether B's vertex w lies outside A's triangle `face`, developed into
+  // that triangle's own plane (stray_hosts counts those of the hosts).
+  bool strays(int w, int face) const;
+  // Whether `move` of v would break an invariant as turned_triangles and
+  // stray_hosts check it. A move's trial lays out v's ring in v's own
+  // plane; near a base vertex (a cone point of the base mesh, where a point
+  // has copies around it) other planes can disagree: a triangle at the base
+  // vertex can turn in its other corners' planes, and a vertex of B the
+  // ring's layout puts inside a triangle can lie outside it developed
+  // around that triangle.
+  bool breaks_invariants(int v, const Move& move);
   bool gather_ring(int v, Ring& ring) const;
   // A's vertex u in base triangle t's plane, the copy nearest `near`.
   bool develop(int u, int t, const Vec2& near, Vec2& result) const;
