@@ -54,7 +54,7 @@ class CrossPatchMap {
   // The invariants, counted (both 0 unless broken): A's triangles that turn
   // the wrong way in the plane of their first corner's base triangle, and
   // B's vertices that lie outside the triangle of A said to hold them, by
-  // more than kOnEdge in the canonical plane (not in barycentric weight: a
+  // more than 1e-9 of the canonical side (not in barycentric weight: a
   // vertex of B on a path has a point in each patch beside it, embedded
   // apart, which agree to rounding, and on a 100k-face mesh's tiny
   // triangles that rounding is over 1e-9 in weight). Holes' fans are left
