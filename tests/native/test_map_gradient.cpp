@@ -75,37 +75,36 @@ struct MovingChord {
 
 TEST(MapGradient, ChordEnergyGradientMatchesDifferences) {
   const MovingChord chord(Vec3(0.1, -0.3, 1));  // facing the chord triangle: no fold
-  const double weight = 2.5, h = 1e-6;
+  const double weight = 2.5;
   const PointGradient g = chord.gradient(weight);
-  for (int axis = 0; axis < 2; ++axis) {
-    Vec2 d = Vec2::Zero();
-    d[axis] = h;
-    double folded = 0;
-    const double difference = weight * (chord.energy(d, &folded) - chord.energy(-d, &folded)) / (2 * h);
-    EXPECT_NEAR(g.energy[axis], difference, 1e-5 * std::abs(difference) + 1e-8) << "axis " << axis;
-  }
+  double folded = 0;
+  const auto d = differences(Vec2::Zero(), 1e-6, [&](const Vec2& p) { return weight * chord.energy(p, &folded); });
+  ASSERT_TRUE(d);
+  for (int axis = 0; axis < 2; ++axis)
+    EXPECT_NEAR(g.energy[axis], (*d)[axis], 1e-5 * std::abs((*d)[axis]) + 1e-8) << "axis " << axis;
   EXPECT_GT(g.energy.norm(), 0.1);
   EXPECT_EQ(g.folded, Vec2::Zero());  // nothing folded, nothing to unfold
 }
 
 TEST(MapGradient, FoldedAreaGradientMatchesDifferences) {
   const MovingChord chord(Vec3(-0.1, 0.3, -1));  // against the chord triangle: a fold
-  const double h = 1e-6;
   const PointGradient g = chord.gradient(1);
   double folded = 0;
   chord.energy(Vec2::Zero(), &folded);
   ASSERT_GT(folded, 0);
+  const auto d_folded = differences(Vec2::Zero(), 1e-6, [&](const Vec2& p) {
+    double area = 0;
+    chord.energy(p, &area);
+    return area;
+  });
+  const auto d_energy = differences(Vec2::Zero(), 1e-6, [&](const Vec2& p) { return chord.energy(p, &folded); });
+  ASSERT_TRUE(d_folded && d_energy);
   for (int axis = 0; axis < 2; ++axis) {
-    Vec2 d = Vec2::Zero();
-    d[axis] = h;
-    double plus = 0, minus = 0;
-    const double energy_plus = chord.energy(d, &plus), energy_minus = chord.energy(-d, &minus);
-    EXPECT_NEAR(g.folded[axis], (plus - minus) / (2 * h), 1e-6) << "axis " << axis;
+    EXPECT_NEAR(g.folded[axis], (*d_folded)[axis], 1e-6) << "axis " << axis;
     // The fold's fixed density adds area times a constant: the energy's
     // gradient is still the density's (the charge, 1e6 times the area, costs
     // the difference some digits).
-    const double difference = (energy_plus - energy_minus) / (2 * h);
-    EXPECT_NEAR(g.energy[axis], difference, 1e-4 * std::abs(difference) + 1e-4) << "axis " << axis;
+    EXPECT_NEAR(g.energy[axis], (*d_energy)[axis], 1e-4 * std::abs((*d_energy)[axis]) + 1e-4) << "axis " << axis;
   }
 }
 
