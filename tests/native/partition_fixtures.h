@@ -12,6 +12,14 @@
 
 namespace cmaps::test {
 
+// Per vertex of a side: whether it lies on one of the partition's paths.
+inline std::vector<char> on_paths(const PartitionSide& side) {
+  std::vector<char> on_path(side.mesh.vertex_count(), 0);
+  for (const auto& path : side.paths)
+    for (int v : path) on_path[v] = 1;
+  return on_path;
+}
+
 // Two poses of one cactus (vertex i onto vertex i), partitioned between
 // farthest-point pairs (8 unless said).
 struct CactusPoses {

@@ -157,13 +157,6 @@ struct Agreement {
   }
 };
 
-std::vector<char> on_paths(const PartitionSide& side) {
-  std::vector<char> on_path(side.mesh.vertex_count(), 0);
-  for (const auto& path : side.paths)
-    for (int v : path) on_path[v] = 1;
-  return on_path;
-}
-
 TEST(MapGradient, TheInPatchTrialsGradientIsItsEnergysDerivative) {
   // Each free vertex of every patch, in its patch's canonical triangle:
   // its triangles mapped onto B, and B's triangles around the vertices of B
@@ -178,7 +171,7 @@ TEST(MapGradient, TheInPatchTrialsGradientIsItsEnergysDerivative) {
   std::vector<std::vector<int>> faces(patches), target_faces(patches);
   for (int f = 0; f < int(a.patch.size()); ++f) faces[a.patch[f]].push_back(f);
   for (int g = 0; g < int(b.patch.size()); ++g) target_faces[b.patch[g]].push_back(g);
-  const std::vector<char> on_path = on_paths(a);
+  const std::vector<char> on_path = test::on_paths(a);
   const double scale = std::sqrt(side_area(a) / side_area(b));
   Agreement energy_gradient;
   int remapping = 0;  // trials whose gradient runs through re-mapped vertices of B too
@@ -214,7 +207,7 @@ TEST(MapGradient, TheTrialsAcrossPathsGradientIsItsEnergysDerivative) {
   // the energy has no gradient.
   const test::EightSkull pair;
   const CrossPatchMap map(pair.p, pair.uv_a, pair.uv_b);
-  const std::vector<char> on_path = on_paths(pair.p.sides[0]);
+  const std::vector<char> on_path = test::on_paths(pair.p.sides[0]);
   Agreement energy_gradient, folded_gradient;
   int unfolding = 0;  // folded rings whose folded area moves with the vertex
   for (int v = 0; v < int(on_path.size()); ++v) {

@@ -26,6 +26,7 @@ namespace {
 using test::CactusPoses;
 using test::EightSkull;
 using test::farthest_points;
+using test::on_paths;
 using test::shared_mesh;
 using test::stretched_copy;
 
@@ -171,9 +172,7 @@ TEST(PatchMapOptimization, AreaMatchingNearsTheTruthAndKeepsEveryPatchEmbedded) 
   EXPECT_LT(matched_truth, 0.8 * plain_truth);
 
   const PartitionSide& side = p.sides[0];
-  std::vector<char> on_path(side.mesh.vertex_count(), 0);
-  for (const auto& path : side.paths)
-    for (int v : path) on_path[v] = 1;
+  const std::vector<char> on_path = on_paths(side);
   EXPECT_EQ(turned_in_patches(side, matched), 0);
   for (int t = 0; t < int(p.triangles.size()); ++t) {
     for (const auto& [v, q] : matched.uv[t])
@@ -189,9 +188,7 @@ TEST(PatchParameterization, TurnedTrianglesAreCounted) {
   PartitionSide& side = poses.p.sides[1];
   PatchParameterization uv = parameterize_patches(side, poses.p);
   EXPECT_EQ(turned_in_patches(side, uv), 0);
-  std::vector<char> on_path(side.mesh.vertex_count(), 0);
-  for (const auto& path : side.paths)
-    for (int v : path) on_path[v] = 1;
+  const std::vector<char> on_path = on_paths(side);
   std::unordered_map<int, Vec2>& patch = uv.uv[0];
   const auto interior = std::find_if(patch.begin(), patch.end(), [&](const auto& x) { return !on_path[x.first]; });
   ASSERT_NE(interior, patch.end());
@@ -212,12 +209,11 @@ TEST(CrossPatchMap, TurnedTrianglesAreCounted) {
   ConsistentPartition& p = poses.p;
   PatchParameterization uv_a = parameterize_patches(p.sides[0], p);
   const PatchParameterization uv_b = parameterize_patches(p.sides[1], p);
-  EXPECT_EQ(CrossPatchMap(p, uv_a, uv_b).turned_triangles(), 0);
-  EXPECT_EQ(CrossPatchMap(p, uv_a, uv_b).stray_hosts(), 0);
+  const CrossPatchMap as_computed(p, uv_a, uv_b);
+  EXPECT_EQ(as_computed.turned_triangles(), 0);
+  EXPECT_EQ(as_computed.stray_hosts(), 0);
   const PartitionSide& a = p.sides[0];
-  std::vector<char> on_path(a.mesh.vertex_count(), 0);
-  for (const auto& path : a.paths)
-    for (int v : path) on_path[v] = 1;
+  const std::vector<char> on_path = on_paths(a);
   std::unordered_map<int, Vec2>& patch = uv_a.uv[0];
   const auto interior = std::find_if(patch.begin(), patch.end(), [&](const auto& x) {
     return !on_path[x.first] && std::none_of(a.mesh.ring(x.first).begin(), a.mesh.ring(x.first).end(),
