@@ -173,6 +173,23 @@ py::dict remesh_pair(const py::handle& mesh_a, const py::handle& mesh_b, const p
   return d;
 }
 
+py::dict map_distortion(const py::handle& source_mesh, const py::handle& target_mesh, const py::handle& image_data) {
+  const cmaps::TriangleMesh source = to_mesh_pair(source_mesh, "source"), target = to_mesh_pair(target_mesh, "target");
+  const std::vector<cmaps::SurfacePoint> image = to_surface_points(image_data, target, "image");
+  cmaps::TriangleDistortion distortion;
+  {
+    py::gil_scoped_release release;
+    distortion = cmaps::triangle_distortion(source, target, image);
+  }
+  py::dict d;
+  d["symmetric_dirichlet"] = to_numpy(distortion.symmetric_dirichlet);
+  py::array_t<bool> flipped(distortion.flipped.size());
+  std::copy(distortion.flipped.begin(), distortion.flipped.end(), flipped.mutable_data());
+  d["flipped"] = flipped;
+  d["area"] = to_numpy(distortion.area);
+  return d;
+}
+
 }  // namespace
 
 void bind_intersurface(py::module_& m) {
@@ -228,6 +245,15 @@ void bind_intersurface(py::module_& m) {
         "over in their patches' embeddings and B's vertices outside the triangle of A said to hold them;\n"
         "'seconds' and per stage. Raises InvalidMeshError for different genus,\n"
         "non-manifold meshes or bad pairs, Cancelled when progress returns False.");
+  m.def("map_distortion", &map_distortion, py::arg("source"), py::arg("target"), py::arg("image"),
+        "Where a map of source onto target distorts, per source triangle (what intersurface_map's\n"
+        "'symmetric_dirichlet' and 'flipped' summarize): source, target: (vertices, triangles); image:\n"
+        "(triangles (n,), barycentric (n, 3)), each source vertex on target's triangles (intersurface_map's\n"
+        "'a_to_b_triangle', 'a_to_b_barycentric'). Returns a dict of (m,) arrays per source triangle:\n"
+        "'symmetric_dirichlet' (the triangle mapped linearly onto its corners' images, target scaled to\n"
+        "source's area; optimum 4, inf for a degenerate image, nan for a zero-area triangle), 'flipped'\n"
+        "(bool: the image faces against target there) and 'area'. Raises ValueError for inputs that do not\n"
+        "fit together, TopologyError for meshes that are no manifold, consistently oriented surfaces.");
   m.def("remesh_pair", &remesh_pair, py::arg("mesh_a"), py::arg("mesh_b"), py::arg("a_to_b"), py::arg("b_to_a"),
         py::arg("feature_pairs"), py::arg("target_vertices"),
         "Consistent remeshes of two meshes mapped onto each other (any genus, holes kept): one mesh (the\n"

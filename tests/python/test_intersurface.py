@@ -86,6 +86,29 @@ def test_round_trip_is_close_to_identity(cat_lion):
     assert np.linalg.norm(back - cat[0], axis=1).mean() / diagonal(cat[0]) < 0.01
 
 
+def test_per_triangle_distortion_summarizes_to_the_maps_report(cat_lion, native):
+    cat, lion, _, r = cat_lion
+    for source, target, key, k in [(cat, lion, "a_to_b", 0), (lion, cat, "b_to_a", 1)]:
+        d = native.map_distortion(source, target, (r[f"{key}_triangle"], r[f"{key}_barycentric"]))
+        energy, flipped, area = d["symmetric_dirichlet"], d["flipped"], d["area"]
+        assert energy.shape == flipped.shape == area.shape == (len(source[1]),) and flipped.dtype == bool
+        finite = np.isfinite(energy)
+        assert energy[finite].min() >= 4 - 1e-9
+        assert np.sum(area[finite] * energy[finite]) / area[finite].sum() == pytest.approx(r["symmetric_dirichlet"][k])
+        assert np.sort(energy[~np.isnan(energy)])[len(energy) // 2] == pytest.approx(
+            r["median_symmetric_dirichlet"][k])
+        assert flipped.sum() == r["flipped"][k]
+    triangle, slot = np.empty(len(cat[0]), np.int32), np.empty(len(cat[0]), np.int64)
+    triangle[cat[1].ravel()] = np.repeat(np.arange(len(cat[1])), 3)  # each vertex at a corner of its last triangle
+    slot[cat[1].ravel()] = np.tile([0, 1, 2], len(cat[1]))
+    identity = native.map_distortion(cat, cat, (triangle, np.eye(3)[slot]))
+    assert np.allclose(identity["symmetric_dirichlet"], 4) and not identity["flipped"].any()
+    with pytest.raises(IndexError, match=r"image triangles\[0\] is 9996, out of range"):
+        native.map_distortion(cat, lion, (np.full(len(cat[0]), len(lion[1]), np.int32), r["a_to_b_barycentric"]))
+    with pytest.raises(ValueError, match="the map has 5 images for"):
+        native.map_distortion(cat, lion, (r["a_to_b_triangle"][:5], r["a_to_b_barycentric"][:5]))
+
+
 def test_zero_features_get_a_valid_map(native):
     a, b = native.read_mesh(str(SPOT)), native.read_mesh(str(SPHERE))
     r = native.intersurface_map(a, b, [], effort=0, method="sphere")

@@ -294,6 +294,21 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
 MapDistortion measure_intersurface_map(const TriangleMesh& source, const TriangleMesh& target,
                                        const std::vector<SurfacePoint>& image);
 
+// The same measure per source triangle, to show where a map distorts (the
+// mean and median above summarize it): each triangle's symmetric Dirichlet
+// density onto the chord triangle of its corners' images (target scaled to
+// the source's area; optimum 4; +inf when the image is degenerate, NaN for
+// a source triangle of zero area), whether that image faces against the
+// target surface (a folded sample), and the triangle's area. Throws as
+// measure_intersurface_map.
+struct TriangleDistortion {
+  std::vector<double> symmetric_dirichlet;
+  std::vector<char> flipped;
+  std::vector<double> area;
+};
+TriangleDistortion triangle_distortion(const TriangleMesh& source, const TriangleMesh& target,
+                                       const std::vector<SurfacePoint>& image);
+
 // Positions of the images: sum of weight * corner position on `target`.
 std::vector<Vec3> surface_positions(const TriangleMesh& target, const std::vector<SurfacePoint>& points);
 

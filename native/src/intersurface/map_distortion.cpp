@@ -25,7 +25,7 @@ std::vector<Vec3> surface_positions(const TriangleMesh& target, const std::vecto
   return positions;
 }
 
-MapDistortion measure_intersurface_map(const TriangleMesh& source, const TriangleMesh& target,
+TriangleDistortion triangle_distortion(const TriangleMesh& source, const TriangleMesh& target,
                                        const std::vector<SurfacePoint>& image) {
   if (image.size() != source.vertices.size())
     throw InvalidInput("the map has " + std::to_string(image.size()) + " images for " +
@@ -43,30 +43,73 @@ MapDistortion measure_intersurface_map(const TriangleMesh& source, const Triangl
     return Vec3(facing *
                 (target.vertices[c[1]] - target.vertices[c[0]]).cross(target.vertices[c[2]] - target.vertices[c[0]]));
   };
+  std::vector<std::vector<int>> star(target.vertices.size());
+  for (int t = 0; t < int(target.triangles.size()); ++t)
+    for (int v : target.triangles[t]) star[v].push_back(t);
+  // The target triangles an image lies in: the one it is said to, and those
+  // sharing the edge or vertex it lies on.
+  const auto holding = [&](const SurfacePoint& p) {
+    constexpr double kOnSide = 1e-9;
+    const Triangle& c = target.triangles[p.triangle];
+    for (int k = 0; k < 3; ++k)
+      if (p.barycentric[(k + 1) % 3] <= kOnSide && p.barycentric[(k + 2) % 3] <= kOnSide) return star[c[k]];
+    std::vector<int> found;
+    for (int k = 0; k < 3; ++k)
+      if (p.barycentric[k] <= kOnSide)  // on the side opposite corner k
+        for (int t : star[c[(k + 1) % 3]])
+          if (std::count(target.triangles[t].begin(), target.triangles[t].end(), c[(k + 2) % 3])) found.push_back(t);
+    return found.empty() ? std::vector<int>{p.triangle} : found;
+  };
+  // The surface's normal where a triangle's images lie: a target triangle
+  // holding all three when there is one (a mesh mapped onto itself folds
+  // nothing, though an image at a vertex may be said to lie in any triangle
+  // of its star, whose normals at a sharp crease can face against this
+  // one's: the cow had 32 triangles counted folded so, the horse 40), else
+  // the normals of the triangles each is said to lie in, summed.
+  const auto surface_normal_at = [&](const SurfacePoint* corner[3]) {
+    const std::vector<int> first = holding(*corner[0]), second = holding(*corner[1]), third = holding(*corner[2]);
+    for (int t : first)
+      if (std::count(second.begin(), second.end(), t) && std::count(third.begin(), third.end(), t)) return normal(t);
+    return Vec3(normal(corner[0]->triangle) + normal(corner[1]->triangle) + normal(corner[2]->triangle));
+  };
 
+  const std::size_t m = source.triangles.size();
+  TriangleDistortion d{std::vector<double>(m), std::vector<char>(m, 0), std::vector<double>(m)};
+  for (std::size_t f = 0; f < m; ++f) {
+    const Triangle& t = source.triangles[f];
+    const Vec3 p[3] = {source.vertices[t[0]], source.vertices[t[1]], source.vertices[t[2]]};
+    const Vec3 q[3] = {scale * mapped[t[0]], scale * mapped[t[1]], scale * mapped[t[2]]};
+    const Vec3 nq = (q[1] - q[0]).cross(q[2] - q[0]);
+    const SurfacePoint* corner[3] = {&image[t[0]], &image[t[1]], &image[t[2]]};
+    const Vec3 surface_normal = surface_normal_at(corner);
+    d.flipped[f] = nq.dot(surface_normal) < 0;
+    const double e = symmetric_dirichlet(p, q, &d.area[f]);
+    d.symmetric_dirichlet[f] = d.area[f] <= 0                     ? std::numeric_limits<double>::quiet_NaN()
+                               : 0.5 * nq.norm() <= 1e-14 * source_area ? std::numeric_limits<double>::infinity()
+                                                                        : e;
+    d.area[f] = std::max(d.area[f], 0.0);
+  }
+  return d;
+}
+
+MapDistortion measure_intersurface_map(const TriangleMesh& source, const TriangleMesh& target,
+                                       const std::vector<SurfacePoint>& image) {
+  const TriangleDistortion per_triangle = triangle_distortion(source, target, image);
   MapDistortion d;
   double energy = 0, area = 0;
-  std::vector<double> energies;  // per source triangle of non-zero area
-  energies.reserve(source.triangles.size());
-  for (const Triangle& t : source.triangles) {
-    const Vec3 &p0 = source.vertices[t[0]], &p1 = source.vertices[t[1]], &p2 = source.vertices[t[2]];
-    const Vec3 q0 = scale * mapped[t[0]], q1 = scale * mapped[t[1]], q2 = scale * mapped[t[2]];
-    const Vec3 nq = (q1 - q0).cross(q2 - q0);
-    const Vec3 surface_normal = normal(image[t[0]].triangle) + normal(image[t[1]].triangle) +
-                                normal(image[t[2]].triangle);
-    if (nq.dot(surface_normal) < 0) ++d.flipped;
-    const Vec3 p[3] = {p0, p1, p2}, q[3] = {q0, q1, q2};
-    double ap;
-    const double e = symmetric_dirichlet(p, q, &ap);
-    if (ap <= 0) continue;  // zero-area source triangles carry no energy
-    if (0.5 * nq.norm() <= 1e-14 * source_area) {
+  std::vector<double> energies;  // per source triangle of non-zero area (zero-area ones carry no energy)
+  energies.reserve(per_triangle.area.size());
+  for (std::size_t f = 0; f < per_triangle.area.size(); ++f) {
+    d.flipped += per_triangle.flipped[f];
+    const double e = per_triangle.symmetric_dirichlet[f];
+    if (std::isnan(e)) continue;
+    energies.push_back(e);
+    if (std::isinf(e)) {
       ++d.degenerate;
-      energies.push_back(std::numeric_limits<double>::infinity());
       continue;
     }
-    energy += ap * e;
-    area += ap;
-    energies.push_back(e);
+    energy += per_triangle.area[f] * e;
+    area += per_triangle.area[f];
   }
   d.symmetric_dirichlet = area > 0 ? energy / area : std::numeric_limits<double>::infinity();
   d.median_symmetric_dirichlet = std::numeric_limits<double>::infinity();
