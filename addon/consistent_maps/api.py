@@ -350,6 +350,17 @@ def transfer(source, target, uv_maps=(), color_attributes=(), normals=False, ver
     return _transfer.transfer(source, target, uv_maps, color_attributes, normals, vertex_groups, attributes)
 
 
+def show_distortion(obj, other):
+    """Colours obj by how the common map onto other distorts it, so features can be added where it stretches:
+    the face-corner colour attribute "Map distortion" (replaced if there), made the active colour: white at the
+    symmetric Dirichlet energy's optimum 4, yellow at 16, red from 64 on, magenta where a face's image folds.
+    Raises MapError (nothing modified) when the two have no common map. Returns the map's summary onto other:
+    'median' and 'mean' (area-weighted) energy, 'folded' triangles and 'high_area', the share of obj's area at
+    16 or more."""
+    from . import distortion  # Blender-only
+    return distortion.show(obj, other)
+
+
 def pca(objects, k=3):
     """The mean shape of consistent remeshes (one connectivity) as a new object "Mean shape" in the
     collection "Consistent Maps", with a shape key per principal component (the first k) at +3 standard

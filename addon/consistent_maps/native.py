@@ -71,6 +71,12 @@ def remesh_pair(mesh_a, mesh_b, a_to_b, b_to_a, feature_pairs, target_vertices):
     return _native.remesh_pair(mesh_a, mesh_b, a_to_b, b_to_a, feature_pairs, target_vertices)
 
 
+def map_distortion(source, target, image):
+    """Per source triangle, how the map image = (triangles, barycentric) of source's vertices on target
+    distorts it: dict of 'symmetric_dirichlet' (optimum 4), 'flipped' (bool) and 'area'."""
+    return _native.map_distortion(source, target, image)
+
+
 def sphere_locator(sphere, triangles):
     """Point location on a parameterization given as a triangulated sphere (covering it once): the object's
     locate(directions, threads=) gives (triangles (q,), barycentric (q, 3)) of each direction."""

@@ -242,6 +242,7 @@ class CM_PT_transfer(_Panel, bpy.types.Panel):
         row = layout.row(align=True)
         row.prop(settings, "normal_align", text="")
         row.operator("consistent_maps.bake_normal_map", icon='NORMALS_FACE')
+        layout.operator("consistent_maps.show_distortion", icon='VPAINT_HLT')
 
 
 CLASSES = (CM_UL_members, CM_UL_features, CM_PT_main, CM_PT_features, CM_PT_compute, CM_PT_results, CM_PT_morph,

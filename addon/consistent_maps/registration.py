@@ -2,8 +2,9 @@
 import bpy
 from bpy.app.handlers import persistent
 
-from . import (features, job, operators_compute, operators_database, operators_features, operators_morph,
-               operators_preview, operators_remesh, operators_set, operators_transfer, overlay, panels, properties)
+from . import (features, job, operators_compute, operators_database, operators_distortion, operators_features,
+               operators_morph, operators_preview, operators_remesh, operators_set, operators_transfer, overlay, panels,
+               properties)
 
 CLASSES = (
     properties.CLASSES
@@ -14,6 +15,7 @@ CLASSES = (
     + operators_remesh.CLASSES
     + operators_morph.CLASSES
     + operators_transfer.CLASSES
+    + operators_distortion.CLASSES
     + operators_database.CLASSES
     + panels.CLASSES
 )

@@ -211,7 +211,7 @@ def test_register_unregister():
 
 def test_every_operator_is_undoable():
     operators = [c for c in registration.CLASSES if issubclass(c, bpy.types.Operator)]
-    assert len(operators) == 19
+    assert len(operators) == 20
     for cls in operators:
         if cls.bl_idname != "consistent_maps.cancel":  # cancelling changes no data
             assert 'UNDO' in cls.bl_options, cls.bl_idname

@@ -254,6 +254,75 @@ def test_transfer_errors_leave_everything_untouched():
     assert [snapshot(obj) for obj in (a, b, c)] + [len(b.data.uv_layers)] == before
 
 
+def _spiked_pair():
+    """The ball and a copy drawn out into a spike over its top (the same vertex order and features), computed as
+    one set: the map of the copy onto the ball squeezes the spike and keeps the bottom."""
+    a = with_features(load(BALL, "Ball"))
+    b = load(BALL, "Spiked", location=(3, 0, 0))
+    co = maps.positions(b.data)
+    low, high = co[:, 2].min(), co[:, 2].max()
+    t = np.clip((co[:, 2] - (low + 0.6 * (high - low))) / (0.4 * (high - low)), 0, 1)
+    co[:, 2] += 3 * (high - low) * t ** 4
+    b.data.vertices.foreach_set("co", co.astype(np.float32).ravel())
+    b.data.update()
+    with_features(b)
+    make_set([a, b])
+    api.compute([a, b], effort=0)
+    return a, b
+
+
+def _face_energy(obj):
+    """Per face, the energy its "Map distortion" colour shows (4 white ... 64 red; nan for magenta, folded)."""
+    from consistent_maps import distortion
+    rgba = _get(obj.data.color_attributes[distortion.NAME].data, "color", 4)
+    starts = _get(obj.data.polygons, "loop_start", 1, np.int64)
+    g, b = rgba[starts, 1], rgba[starts, 2]
+    t = np.where(b > 0, (1 - b) / 2, 1 - g / 2)
+    return np.where(rgba[starts, 0] > 0.99, 4 * 2 ** (4 * t), np.nan)
+
+
+def test_show_distortion_colours_where_the_map_stretches():
+    from consistent_maps import distortion
+    shown = distortion.colours(np.array([4.0, 16, 64, 500, np.nan, 4]), np.array([0, 0, 0, 0, 0, 1], bool))
+    assert np.allclose(shown, [[1, 1, 1, 1], [1, 1, 0, 1], [1, 0, 0, 1], [1, 0, 0, 1], distortion.ZERO_AREA,
+                               distortion.FOLDED])
+    ball, spiked = _spiked_pair()
+    before = snapshot(ball)
+    summary = api.show_distortion(spiked, ball)
+    assert snapshot(ball) == before and spiked.data.color_attributes.active_color.name == distortion.NAME
+    energy = _face_energy(spiked)
+    z = maps.positions(ball.data)[:, 2]  # the spike's faces by where they were on the ball
+    face_z = np.array([z[list(p.vertices)].mean() for p in spiked.data.polygons])
+    low, high = z.min(), z.max()
+    bottom, spike = face_z < low + 0.4 * (high - low), face_z > low + 0.85 * (high - low)
+    print(f"spiked onto ball: bottom median {np.nanmedian(energy[bottom]):.2f}, spike "
+          f"{np.nanmedian(energy[spike]):.2f}; {summary}")
+    assert np.nanmedian(energy[bottom]) < 5 < 8 < np.nanmedian(energy[spike])
+    assert 4 <= summary["median"] < summary["mean"] and 0 < summary["high_area"] < 0.5
+    assert summary["folded"] >= np.isnan(energy).sum()  # a face shows magenta if one of its triangles folds
+    # Shown again: the one attribute replaced, not a second added.
+    api.show_distortion(spiked, ball)
+    assert [c.name for c in spiked.data.color_attributes].count(distortion.NAME) == 1
+    a, b = ball, spiked
+
+    c = with_features(load(BALL, "C"))
+    api.compute([c], effort=0)  # a computation of its own: no common map with A
+    before = [snapshot(obj) for obj in (a, b, c)]
+    try:
+        api.show_distortion(c, a)
+        raise AssertionError("expected MapError")
+    except api.MapError as e:
+        assert "not computed together" in str(e), str(e)
+    bpy.context.scene.consistent_maps.transfer_source = None
+    select([b])
+    expect_error(bpy.ops.consistent_maps.show_distortion, "choose the source")
+    bpy.context.scene.consistent_maps.transfer_source = a
+    select([b])
+    assert bpy.ops.consistent_maps.show_distortion() == {'FINISHED'}
+    assert b.data.color_attributes.active_color.name == distortion.NAME
+    assert [snapshot(obj) for obj in (a, c)] == before[::2]
+
+
 def test_morph_errors_leave_everything_untouched():
     a, b = _pair()
     c = with_features(load(BALL, "C"))
