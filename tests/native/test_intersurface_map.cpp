@@ -200,6 +200,17 @@ std::vector<SurfacePoint> identity_map(const TriangleMesh& mesh) {
   return identity;
 }
 
+// `identity` with vertex v's image moved onto the vertex farthest from v.
+std::vector<SurfacePoint> moved_to_the_far_side(const TriangleMesh& mesh, const std::vector<SurfacePoint>& identity,
+                                                int v) {
+  int far = v;
+  for (int w = 0; w < int(mesh.vertices.size()); ++w)
+    if ((mesh.vertices[w] - mesh.vertices[v]).norm() > (mesh.vertices[far] - mesh.vertices[v]).norm()) far = w;
+  std::vector<SurfacePoint> moved = identity;
+  moved[v] = identity[far];
+  return moved;
+}
+
 // The median triangle's energy, which chooses among restarts: 4 for a mesh
 // mapped onto itself, and still 4 when one vertex's image is moved to the
 // far side of the mesh, which stretches the few triangles around it into
@@ -211,11 +222,7 @@ TEST(IntersurfaceMap, MedianEnergyIsNotMovedByAFewDistortedTriangles) {
   EXPECT_NEAR(exact.symmetric_dirichlet, 4, 1e-9);
   EXPECT_NEAR(exact.median_symmetric_dirichlet, 4, 1e-9);
   const int v = mesh.triangles[0][0];
-  int far = v;
-  for (int w = 0; w < int(mesh.vertices.size()); ++w)
-    if ((mesh.vertices[w] - mesh.vertices[v]).norm() > (mesh.vertices[far] - mesh.vertices[v]).norm()) far = w;
-  std::vector<SurfacePoint> moved = identity;
-  moved[v] = identity[far];
+  std::vector<SurfacePoint> moved = moved_to_the_far_side(mesh, identity, v);
   const MapDistortion one_bad = measure_intersurface_map(mesh, mesh, moved);
   std::printf("one image moved: mean %.2f, median %.6f\n", one_bad.symmetric_dirichlet,
               one_bad.median_symmetric_dirichlet);
@@ -244,11 +251,7 @@ TEST(IntersurfaceMap, PerTriangleDistortionShowsWhereTheMapDistorts) {
   EXPECT_NEAR(area, surface_area(mesh), 1e-12 * area);
 
   const int v = mesh.triangles[0][0];
-  int far = v;
-  for (int w = 0; w < int(mesh.vertices.size()); ++w)
-    if ((mesh.vertices[w] - mesh.vertices[v]).norm() > (mesh.vertices[far] - mesh.vertices[v]).norm()) far = w;
-  std::vector<SurfacePoint> moved = identity;
-  moved[v] = identity[far];
+  std::vector<SurfacePoint> moved = moved_to_the_far_side(mesh, identity, v);
   std::swap(moved[mesh.triangles[1][1]], moved[mesh.triangles[1][2]]);
   const TriangleDistortion bad = triangle_distortion(mesh, mesh, moved);
   double energy = 0, finite_area = 0;
