@@ -2,9 +2,11 @@
 
 Builds a set of two Spots with features, presses Compute as a user would (modal
 operator, worker thread), takes screenshots while it runs and when done, shows
-the sphere preview. Screenshots go to out/blender/gui-*.png for review; exits 1
-if the modal run does not finish with both results up to date (draw errors are
-caught by run.sh, which fails on any Python traceback).
+the map's distortion (Show Distortion: the viewport turns to the colour
+attribute), then the sphere preview. Screenshots go to out/blender/gui-*.png for
+review; exits 1 if the modal run does not finish with both results up to date or
+Show Distortion fails (draw errors are caught by run.sh, which fails on any
+Python traceback).
 
     xvfb-run -a -s "-screen 0 1300x1300x24" blender --factory-startup <empty.blend> -P tests/blender/gui_check.py
 """
@@ -105,12 +107,21 @@ def watch():
     if api.result_state(a) != "CURRENT" or api.result_state(b) != "CURRENT":
         finish(False, f"results after the modal run: {api.result_state(a)}, {api.result_state(b)}")
     screenshot("done")
+    bpy.context.scene.consistent_maps.transfer_source = b
+    with context():
+        result = bpy.ops.consistent_maps.show_distortion()
+    if result != {'FINISHED'} or area.spaces.active.shading.color_type != 'VERTEX':
+        finish(False, f"Show Distortion returned {result}, the viewport shows {area.spaces.active.shading.color_type}")
+    bpy.app.timers.register(lambda: screenshot("distortion") or preview(), first_interval=0.5)
+    return None
+
+
+def preview():
     with context():
         bpy.ops.consistent_maps.sphere_preview(show=True)
     bpy.app.timers.register(lambda: screenshot("preview") or finish(True, "modal Compute finished, both results up to date"
                                                                 + (", progress captured" if seen else "")),
                             first_interval=0.5)
-    return None
 
 
 bpy.app.timers.register(start, first_interval=1.0)
