@@ -14,7 +14,8 @@ with its own normals, the target with the source's baked normals).
 Part 2, genus 1 without the sphere: the kitten and the torus, no features, mapped directly onto each
 other (the inter-surface map through a consistent partition); a colour attribute painted on the kitten
 is carried onto the torus and the kitten morphs into the torus. Writes OUTDIR/kitten_torus.blend,
-OUTDIR/pair_morph_contact_sheet.png and OUTDIR/colour_transfer.png.
+OUTDIR/pair_morph_contact_sheet.png, OUTDIR/colour_transfer.png and OUTDIR/pair_distortion.png (each face of
+both coloured by how the map onto the other stretches it).
 
 Uses consistent_maps.api from addon/ (the native module is built there by scripts/setup.sh); nothing is
 installed.
@@ -339,6 +340,16 @@ pair_target.hide_render = True
 render_morph(pair_source, OUT / "pair_morph_contact_sheet.png")
 t = step(f"saved {blend}; rendered {OUT / 'colour_transfer.png'} ({PAIR_SOURCE} and {PAIR_TARGET} with the "
          f"carried colours) and {OUT / 'pair_morph_contact_sheet.png'}", t)
+
+# Where the map stretches: each face coloured by its distortion onto the other (white as is, red stretched).
+scene.frame_set(1)
+pair_target.hide_render = False
+camera_on([pair_source, pair_target], 2 / 1)
+shown = [api.show_distortion(obj, other) for obj, other in ((pair_source, pair_target), (pair_target, pair_source))]
+save_png(render(640, 320), OUT / "pair_distortion.png")
+t = step(f"rendered {OUT / 'pair_distortion.png'}: each face by its symmetric Dirichlet energy onto the other "
+         f"(white 4, yellow 16, red 64 and more); median " + " / ".join(f"{s['median']:.2f}" for s in shown) +
+         ", share of the area at 16 or more " + " / ".join(f"{s['high_area']:.1%}" for s in shown), t)
 
 # Consistent remeshes of the pair, through its map: one connectivity on both, drawn as wireframes.
 scene.frame_set(1)
