@@ -8,7 +8,8 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 step() { printf '==> %s\n' "$*"; }
 
 # --- Debian packages --------------------------------------------------------
-packages=(g++ make libopenmesh-dev libeigen3-dev pybind11-dev libgtest-dev blender)
+# xvfb: the add-on's interactive check runs Blender with a window (tests/blender/gui_check.py).
+packages=(g++ make libopenmesh-dev libeigen3-dev pybind11-dev libgtest-dev blender xvfb)
 command -v cmake >/dev/null 2>&1 || packages+=(cmake)  # a pip-installed cmake is fine too
 missing=()
 for package in "${packages[@]}"; do
