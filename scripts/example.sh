@@ -53,7 +53,7 @@ if ! blender -b --factory-startup --python-exit-code 1 -P examples/blender_examp
 fi
 grep '^\[blender example\]' out/blender_example.log
 for file in example.blend morph_contact_sheet.png texture_transfer.png normal_transfer.png kitten_torus.blend \
-  colour_transfer.png pair_morph_contact_sheet.png pair_remeshes.png; do
+  colour_transfer.png pair_morph_contact_sheet.png pair_distortion.png pair_remeshes.png; do
   test -s "out/blender_example/$file" || { echo "missing out/blender_example/$file" >&2; exit 1; }
 done
 
@@ -65,4 +65,5 @@ echo "torus's vertices on each other: A_to_B.txt, B_to_A.txt, A_on_B.obj, B_on_A
 echo "A_remesh.obj, B_remesh.obj), blender_example/"
 echo "(example.blend with the animated morph, the baked texture and normal map, morph_contact_sheet.png,"
 echo "texture_transfer.png, normal_transfer.png; kitten_torus.blend with the kitten's colours on the torus"
-echo "and the kitten morphing into it, colour_transfer.png, pair_morph_contact_sheet.png, pair_remeshes.png)."
+echo "and the kitten morphing into it, colour_transfer.png, pair_morph_contact_sheet.png, pair_distortion.png"
+echo "(both coloured by where the map stretches them), pair_remeshes.png)."
