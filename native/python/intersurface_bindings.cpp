@@ -252,8 +252,9 @@ void bind_intersurface(py::module_& m) {
         "'a_to_b_triangle', 'a_to_b_barycentric'). Returns a dict of (m,) arrays per source triangle:\n"
         "'symmetric_dirichlet' (the triangle mapped linearly onto its corners' images, target scaled to\n"
         "source's area; optimum 4, inf for a degenerate image, nan for a zero-area triangle), 'flipped'\n"
-        "(bool: the image faces against target there) and 'area'. Raises ValueError for inputs that do not\n"
-        "fit together, TopologyError for meshes that are no manifold, consistently oriented surfaces.");
+        "(bool: the image faces against target there) and 'area'. Raises IndexError for image triangles out\n"
+        "of range, InvalidMeshError (a ValueError) for a count of images other than source's vertices or\n"
+        "meshes that are no manifold, consistently oriented surfaces.");
   m.def("remesh_pair", &remesh_pair, py::arg("mesh_a"), py::arg("mesh_b"), py::arg("a_to_b"), py::arg("b_to_a"),
         py::arg("feature_pairs"), py::arg("target_vertices"),
         "Consistent remeshes of two meshes mapped onto each other (any genus, holes kept): one mesh (the\n"
