@@ -187,6 +187,10 @@ py::dict map_distortion(const py::handle& source_mesh, const py::handle& target_
   std::copy(distortion.flipped.begin(), distortion.flipped.end(), flipped.mutable_data());
   d["flipped"] = flipped;
   d["area"] = to_numpy(distortion.area);
+  const cmaps::MapDistortion summary = cmaps::summarize(distortion);
+  d["mean"] = summary.symmetric_dirichlet;
+  d["median"] = summary.median_symmetric_dirichlet;
+  d["folded"] = summary.flipped;
   return d;
 }
 
@@ -252,7 +256,8 @@ void bind_intersurface(py::module_& m) {
         "'a_to_b_triangle', 'a_to_b_barycentric'). Returns a dict of (m,) arrays per source triangle:\n"
         "'symmetric_dirichlet' (the triangle mapped linearly onto its corners' images, target scaled to\n"
         "source's area; optimum 4, inf for a degenerate image, nan for a zero-area triangle), 'flipped'\n"
-        "(bool: the image faces against target there) and 'area'. Raises IndexError for image triangles out\n"
+        "(bool: the image faces against target there) and 'area'; and what intersurface_map reports of them:\n"
+        "'mean' (area-weighted, degenerate images left out), 'median' and 'folded'. Raises IndexError for image triangles out\n"
         "of range, InvalidMeshError (a ValueError) for a count of images other than source's vertices or\n"
         "meshes that are no manifold, consistently oriented surfaces.");
   m.def("remesh_pair", &remesh_pair, py::arg("mesh_a"), py::arg("mesh_b"), py::arg("a_to_b"), py::arg("b_to_a"),

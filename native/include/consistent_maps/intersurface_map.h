@@ -308,6 +308,8 @@ struct TriangleDistortion {
 };
 TriangleDistortion triangle_distortion(const TriangleMesh& source, const TriangleMesh& target,
                                        const std::vector<SurfacePoint>& image);
+// What measure_intersurface_map reports, summarized from the per-triangle measure.
+MapDistortion summarize(const TriangleDistortion& per_triangle);
 
 // Positions of the images: sum of weight * corner position on `target`.
 std::vector<Vec3> surface_positions(const TriangleMesh& target, const std::vector<SurfacePoint>& points);

@@ -92,9 +92,7 @@ TriangleDistortion triangle_distortion(const TriangleMesh& source, const Triangl
   return d;
 }
 
-MapDistortion measure_intersurface_map(const TriangleMesh& source, const TriangleMesh& target,
-                                       const std::vector<SurfacePoint>& image) {
-  const TriangleDistortion per_triangle = triangle_distortion(source, target, image);
+MapDistortion summarize(const TriangleDistortion& per_triangle) {
   MapDistortion d;
   double energy = 0, area = 0;
   std::vector<double> energies;  // per source triangle of non-zero area (zero-area ones carry no energy)
@@ -119,6 +117,11 @@ MapDistortion measure_intersurface_map(const TriangleMesh& source, const Triangl
     d.median_symmetric_dirichlet = *middle;
   }
   return d;
+}
+
+MapDistortion measure_intersurface_map(const TriangleMesh& source, const TriangleMesh& target,
+                                       const std::vector<SurfacePoint>& image) {
+  return summarize(triangle_distortion(source, target, image));
 }
 
 }  // namespace cmaps
