@@ -257,9 +257,9 @@ void bind_intersurface(py::module_& m) {
         "'symmetric_dirichlet' (the triangle mapped linearly onto its corners' images, target scaled to\n"
         "source's area; optimum 4, inf for a degenerate image, nan for a zero-area triangle), 'flipped'\n"
         "(bool: the image faces against target there) and 'area'; and what intersurface_map reports of them:\n"
-        "'mean' (area-weighted, degenerate images left out), 'median' and 'folded'. Raises IndexError for image triangles out\n"
-        "of range, InvalidMeshError (a ValueError) for a count of images other than source's vertices or\n"
-        "meshes that are no manifold, consistently oriented surfaces.");
+        "'mean' (area-weighted, degenerate images left out), 'median' and 'folded'. Raises IndexError for\n"
+        "image triangles out of range, InvalidMeshError (a ValueError) for a count of images other than\n"
+        "source's vertices or meshes that are no manifold, consistently oriented surfaces.");
   m.def("remesh_pair", &remesh_pair, py::arg("mesh_a"), py::arg("mesh_b"), py::arg("a_to_b"), py::arg("b_to_a"),
         py::arg("feature_pairs"), py::arg("target_vertices"),
         "Consistent remeshes of two meshes mapped onto each other (any genus, holes kept): one mesh (the\n"

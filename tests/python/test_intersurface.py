@@ -98,8 +98,8 @@ def test_per_triangle_distortion_summarizes_to_the_maps_report(cat_lion, native)
         assert np.sort(energy[~np.isnan(energy)])[len(energy) // 2] == pytest.approx(
             r["median_symmetric_dirichlet"][k])
         assert flipped.sum() == r["flipped"][k]
-        assert (d["mean"], d["median"], d["folded"]) == (r["symmetric_dirichlet"][k], r["median_symmetric_dirichlet"][k],
-                                                         r["flipped"][k])
+        reported = (r["symmetric_dirichlet"][k], r["median_symmetric_dirichlet"][k], r["flipped"][k])
+        assert (d["mean"], d["median"], d["folded"]) == reported
     triangle, slot = np.empty(len(cat[0]), np.int32), np.empty(len(cat[0]), np.int64)
     triangle[cat[1].ravel()] = np.repeat(np.arange(len(cat[1])), 3)  # each vertex at a corner of its last triangle
     slot[cat[1].ravel()] = np.tile([0, 1, 2], len(cat[1]))
