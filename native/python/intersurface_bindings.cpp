@@ -113,6 +113,9 @@ py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, co
   d["refitted"] = py::make_tuple(result.refitted_a, result.refitted_b);
   d["balanced_patches"] = result.balanced_patches;
   d["patch_area_ratio"] = result.patch_area_ratio;
+  d["a_along_paths"] = py::array_t<std::int8_t>(result.a_along_paths.size(), result.a_along_paths.data());
+  d["b_along_paths"] = py::array_t<std::int8_t>(result.b_along_paths.size(), result.b_along_paths.data());
+  d["moved"] = result.a_along_paths.empty() ? py::object(py::none()) : py::object(py::str(result.moved_b ? "B" : "A"));
   d["stretch_efficiency"] = py::make_tuple(result.efficiency_a, result.efficiency_b);
   d["steiner"] = py::make_tuple(result.steiner_a, result.steiner_b);
   d["restart_dirichlet"] = to_numpy(result.restart_dirichlet);
@@ -243,6 +246,10 @@ void bind_intersurface(py::module_& m) {
         "balance corresponding patches' areas (balance_rounds rounds, 0 = not tried; kept only when less\n"
         "distorted, as for method), 'patch_area_ratio': the largest ratio of a patch's "
         "shares of A's and B's area in the partition used;\n"
+        "'a_along_paths' (mA,) and 'b_along_paths' (mB,) int8, the direct map kept (else empty): where each\n"
+        "input triangle lies against the partition's paths, 0 away, 1 a corner on a path, 2 cut by one\n"
+        "(the direct map's distortion and folds gather there); 'moved': 'A' or 'B', the mesh whose vertices the\n"
+        "direct map's optimization moved over the other's fixed embedding (None for the sphere's map);\n"
         "'sphere_flipped', 'stretch_efficiency' and 'steiner' of the two spherical maps (genus 0);\n"
         "'map_flipped': the map's own folds, 0 when it is bijective as computed ('flipped' counts those of the\n"
         "vertex sampling): through the sphere 'sphere_flipped', directly the triangles of A and of B turned\n"

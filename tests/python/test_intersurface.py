@@ -229,6 +229,10 @@ def test_genus_zero_methods(native):
         other = "partition" if method == "sphere" else "sphere"
         assert one[f"{other}_median_dirichlet"] is None
         folds[method] = sum(one["flipped"])
+        if method == "sphere":
+            assert one["a_along_paths"].size == 0 and one["b_along_paths"].size == 0 and one["moved"] is None
+        else:
+            assert one["a_along_paths"].shape == (len(a[1]),) and one["moved"] in ("A", "B")
     assert (both["method"] == "partition") == less_distorted(
         medians["partition"], folds["partition"], medians["sphere"], folds["sphere"], len(a[1]) + len(b[1]),
         wins_ties=True)
@@ -268,6 +272,24 @@ def test_genus_one_map(native):
     expect_exact(walls, a, b)
     with pytest.raises(ValueError, match="cross_sweeps must be at least 0, got -1"):
         native.intersurface_map(a, b, [[0, 7]], cross_sweeps=-1)
+
+
+def test_genus_one_map_reports_where_its_paths_run(native):
+    """Each input triangle's place against the partition's paths (0 away, 1 a corner on one, 2 cut by one): the
+    triangles around a base vertex lie on paths, the rest of the surface holds all three kinds, and the pair
+    given the other way round reports the same map, mirrored."""
+    a, b = native.read_mesh(str(TORUS)), native.read_mesh(str(KNOT))
+    r = native.intersurface_map(a, b, [[0, 7]])
+    for along, mesh, column in ((r["a_along_paths"], a, 0), (r["b_along_paths"], b, 1)):
+        assert along.dtype == np.int8 and along.shape == (len(mesh[1]),)
+        assert set(np.unique(along)) == {0, 1, 2}
+        at_base = np.isin(mesh[1], r["features"][:, column]).any(axis=1)
+        assert at_base.any() and (along[at_base] >= 1).all()
+    swapped = native.intersurface_map(b, a, [[7, 0]])
+    assert swapped["moved"] == {"A": "B", "B": "A"}[r["moved"]]
+    assert (swapped["a_along_paths"] == r["b_along_paths"]).all()
+    assert (swapped["b_along_paths"] == r["a_along_paths"]).all()
+    assert (swapped["a_to_b_triangle"] == r["b_to_a_triangle"]).all()
 
 
 def test_genus_one_first_pairs_are_screened(native):

@@ -71,6 +71,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <cstdint>
 #include <vector>
 
 #include "consistent_maps/mesh.h"
@@ -247,6 +248,15 @@ struct IntersurfaceResult {
   // (1: every patch takes the same share of both).
   bool balanced_patches = false;
   double patch_area_ratio = 1;
+  // The direct map (kept): per input triangle of A and of B, where it lies
+  // against the partition's paths: 0 away from them, 1 a corner on a path,
+  // 2 cut by one (its pieces in two patches). Empty for the sphere's map.
+  // The direct map's distortion and folds gather along its paths, where
+  // the patch embeddings lay each path straight (BENCHMARKS.md).
+  std::vector<std::int8_t> a_along_paths, b_along_paths;
+  // The direct map kept moved B's vertices over A's fixed embedding (it was
+  // traced and optimized from B's side); false: A's moved.
+  bool moved_b = false;
   // Per restart through the sphere (genus 0), or of the direct map (genus
   // >= 1 or method partition, a pair without features or holes, more than
   // one restart), the final symmetric Dirichlet energy A -> B plus B -> A:

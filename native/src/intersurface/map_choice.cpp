@@ -44,6 +44,8 @@ void exchange_sides(IntersurfaceResult& r) {
   std::swap(r.efficiency_a, r.efficiency_b);
   std::swap(r.refitted_a, r.refitted_b);
   std::swap(r.steiner_a, r.steiner_b);
+  std::swap(r.a_along_paths, r.b_along_paths);
+  r.moved_b = !r.moved_b;
 }
 
 void keep_less_distorted(IntersurfaceResult& first, const std::exception_ptr& first_error,

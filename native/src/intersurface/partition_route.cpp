@@ -17,6 +17,7 @@
 #include "intersurface/patch_map_optimization.h"
 #include "intersurface/patch_parameterization.h"
 #include "intersurface/path_guide.h"
+#include "intersurface/split_triangles.h"
 #include "paths/mesh_holes.h"
 
 namespace cmaps {
@@ -96,6 +97,11 @@ void map_partition(ConsistentPartition& partition, const ClosedMesh& closed_a, c
     result.a_corners_to_b = surface_only(convert(across.map_a_corners(ca, cb, threads)), 3 * a.triangles.size(), b);
     result.b_corners_to_a = surface_only(convert(across.map_b_corners(ca, cb, threads)), 3 * b.triangles.size(), a);
   }
+  result.a_along_paths = along_paths(partition.sides[0]);
+  result.b_along_paths = along_paths(partition.sides[1]);
+  result.a_along_paths.resize(a.triangles.size());
+  result.b_along_paths.resize(b.triangles.size());
+  result.moved_b = false;  // A's embedding moved (exchange_sides turns this for a map from B's side)
   result.a_on_b = surface_positions(b, result.a_to_b);
   result.b_on_a = surface_positions(a, result.b_to_a);
   result.seconds_locate = seconds_since(stage);

@@ -36,4 +36,22 @@ SplitTriangles split_triangles(const PartitionSide& side) {
   return split;
 }
 
+std::vector<std::int8_t> along_paths(const PartitionSide& side) {
+  const EditableMesh& mesh = side.mesh;
+  std::vector<char> on_path(mesh.vertex_count(), 0);
+  for (const auto& path : side.paths)
+    for (int v : path) on_path[v] = 1;
+  std::vector<int> patch(side.input_triangles, -1);
+  std::vector<std::int8_t> along(side.input_triangles, 0);
+  for (int f = 0; f < int(mesh.triangles().size()); ++f) {
+    const int t = mesh.input_triangle(f);
+    if (t >= side.input_triangles) continue;
+    if (patch[t] < 0) patch[t] = side.patch[f];
+    if (patch[t] != side.patch[f]) along[t] = 2;
+    for (int v : mesh.triangles()[f])
+      if (v < mesh.input_vertex_count() && on_path[v] && along[t] == 0) along[t] = 1;
+  }
+  return along;
+}
+
 }  // namespace cmaps

@@ -9,6 +9,7 @@
 // (cross_patch_optimization.h, with chord_energy.h's energy).
 #pragma once
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "intersurface/chord_energy.h"
@@ -23,6 +24,11 @@ struct SplitTriangles {
 };
 
 SplitTriangles split_triangles(const PartitionSide& side);
+
+// Per input triangle (holes' fans left out), where it lies against the
+// side's paths: 0 away from them, 1 a corner on a path, 2 cut by one (its
+// pieces in two patches). What IntersurfaceResult::a_along_paths reports.
+std::vector<std::int8_t> along_paths(const PartitionSide& side);
 
 // Cut triangle s's chord energy (triangle_energy) with its corners' images
 // in `images` (per mesh vertex), vertex v's replaced by *q (none when v < 0);
