@@ -345,6 +345,10 @@ def test_genus_one_with_holes(native):
             corners = target[1][r[f"{side}_triangle"][v]]
             weights = r[f"{side}_barycentric"][v]
             assert weights[[c not in other for c in corners]].sum() < 1e-9, f"rim vertex {v} lands off the rim"
+        # Rims are paths of the partition; each surface triangle is placed against them, fans left out.
+        along = r[f"{side[0]}_along_paths"]
+        assert along.shape == (len(source[1]),)
+        assert (along[np.isin(source[1], list(rim)).any(axis=1)] >= 1).all()
     with pytest.raises(native.InvalidMeshError, match="A has 2 holes, B has 1; an inter-surface map needs as many"):
         native.intersurface_map(a, holed(knot, [0]), [])
 
