@@ -2,7 +2,7 @@
 benchmark's unfeatured pairs (default settings), its input triangles in three classes from `intersurface_map`'s
 'a_along_paths' / 'b_along_paths' (cut by a path, touching one, the rest), per class the median symmetric Dirichlet
 energy and the folded samples (the library's `map_distortion`). "moving": the side whose vertices the optimization
-moved (the run kept was traced from it), "fixed": the other. Prints BENCHMARKS.md's table (about 4 minutes).
+moved (the run kept was traced from it), "fixed": the other. Prints BENCHMARKS.md's table (about 3 minutes).
 
     python3 bench/folds_along_paths.py
 """

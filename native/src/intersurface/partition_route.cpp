@@ -99,8 +99,6 @@ void map_partition(ConsistentPartition& partition, const ClosedMesh& closed_a, c
   }
   result.a_along_paths = along_paths(partition.sides[0]);
   result.b_along_paths = along_paths(partition.sides[1]);
-  result.a_along_paths.resize(a.triangles.size());
-  result.b_along_paths.resize(b.triangles.size());
   result.moved_b = false;  // A's embedding moved (exchange_sides turns this for a map from B's side)
   result.a_on_b = surface_positions(b, result.a_to_b);
   result.b_on_a = surface_positions(a, result.b_to_a);
