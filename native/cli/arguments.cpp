@@ -12,11 +12,11 @@ const char* const kUsage = R"(usage:
   cmaps consistent IN IN ... --features FILE -o DIR [--remesh N] [--grid N] [--first K] [--restarts K]
                    [--align] [--seed N] [--effort 0|1|2] [--threads N] [--json]
   cmaps intersurface A B [--features FILE] -o DIR [--remesh N] [--method auto|sphere|partition] [--optimize R]
-                     [--cross-sweeps N] [--restarts K] [--starts S] [--seed N] [--effort 0|1|2] [--threads N]
-                     [--json]
+                     [--cross-sweeps N] [--cross-turns T] [--restarts K] [--starts S] [--seed N]
+                     [--effort 0|1|2] [--threads N] [--json]
   cmaps transfer SOURCE TARGET [--features FILE] -o OUT.obj [--positions] [--method auto|sphere|partition]
-                 [--optimize R] [--cross-sweeps N] [--restarts K] [--starts S] [--seed N] [--effort 0|1|2]
-                 [--threads N] [--json]
+                 [--optimize R] [--cross-sweeps N] [--cross-turns T] [--restarts K] [--starts S] [--seed N]
+                 [--effort 0|1|2] [--threads N] [--json]
   cmaps --help | --version
 
 commands:
@@ -107,6 +107,10 @@ options:
                      map's vertices moving across the partition's paths
                      (0..10000, default 20; 0 = the paths stay walls; more
                      sweeps move paths farther, slowly)
+  --cross-turns T    intersurface, transfer: the two meshes' vertices take T
+                     turns crossing the paths, A's first, each against the
+                     other's embedding as it is then (1..100, default
+                     2; 1 = B's patches keep their straight paths)
   --starts S         intersurface, transfer: the direct map of a pair without
                      --features and without holes pairs the surfaces' handles
                      and parts as its automatic first pair decides (A's
@@ -194,6 +198,8 @@ Arguments parse(const std::vector<std::string>& args) {
     else if (arg == "--optimize") a.optimize = int(parse_integer(arg, value(), 0, 100)), a.optimize_given = true;
     else if (arg == "--cross-sweeps")
       a.cross_sweeps = int(parse_integer(arg, value(), 0, 10000)), a.cross_sweeps_given = true;
+    else if (arg == "--cross-turns")
+      a.cross_turns = int(parse_integer(arg, value(), 1, 100)), a.cross_turns_given = true;
     else if (arg == "--starts")
       a.starts = int(parse_integer(arg, value(), 1, 100)), a.starts_given = true;
     else if (arg == "--restarts") a.restarts = int(parse_integer(arg, value(), 1, 100)), a.restarts_given = true;
@@ -225,6 +231,8 @@ Arguments parse(const std::vector<std::string>& args) {
     throw UsageError(a.command + " takes no --optimize (only intersurface and transfer do)");
   if (a.cross_sweeps_given && a.command != "intersurface" && a.command != "transfer")
     throw UsageError(a.command + " takes no --cross-sweeps (only intersurface and transfer do)");
+  if (a.cross_turns_given && a.command != "intersurface" && a.command != "transfer")
+    throw UsageError(a.command + " takes no --cross-turns (only intersurface and transfer do)");
   if (a.starts_given && a.command != "intersurface" && a.command != "transfer")
     throw UsageError(a.command + " takes no --starts (only intersurface and transfer do)");
   if (a.restarts_given && a.command != "intersurface" && a.command != "transfer" && a.command != "consistent")

@@ -26,10 +26,12 @@ struct Arguments {
   int remesh = 0;                               // consistent and intersurface
   int grid = 64, first = -1;                    // consistent only
   bool remesh_given = false, grid_given = false, first_given = false;
-  // optimize, cross_sweeps, starts: intersurface and transfer only, defaults the library's
+  // optimize, cross_sweeps, cross_turns, starts: intersurface and transfer only, defaults the library's
   int optimize = cmaps::IntersurfaceOptions{}.optimize_rounds, restarts = 1,
-      cross_sweeps = cmaps::IntersurfaceOptions{}.cross_sweeps, starts = cmaps::IntersurfaceOptions{}.starts;
-  bool optimize_given = false, restarts_given = false, cross_sweeps_given = false, starts_given = false;
+      cross_sweeps = cmaps::IntersurfaceOptions{}.cross_sweeps, cross_turns = cmaps::IntersurfaceOptions{}.cross_turns,
+      starts = cmaps::IntersurfaceOptions{}.starts;
+  bool optimize_given = false, restarts_given = false, cross_sweeps_given = false, cross_turns_given = false,
+       starts_given = false;
   std::optional<cmaps::IntersurfaceMethod> method;  // intersurface and transfer only
   std::uint64_t seed = 1;
   int effort = 1;

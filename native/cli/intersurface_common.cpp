@@ -43,6 +43,7 @@ cmaps::IntersurfaceOptions intersurface_options(const Arguments& args) {
   options.optimize_rounds = args.optimize;
   if (args.optimize == 0) options.correspondence_weight = 0;  // the plain composition
   options.cross_sweeps = args.cross_sweeps;
+  options.cross_turns = args.cross_turns;
   options.restarts = args.restarts;
   options.starts = args.starts;
   options.method = args.method.value_or(cmaps::IntersurfaceMethod::automatic);

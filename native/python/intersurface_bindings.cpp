@@ -48,7 +48,7 @@ std::pair<py::array_t<std::int32_t>, py::array_t<double>> surface_point_arrays(
 
 py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, const py::handle& pairs_data, int grid,
                           int optimize, int restarts, bool corner_images, int balance_rounds, int cross_sweeps,
-                          int starts, const std::string& method,
+                          int cross_turns,                           int starts, const std::string& method,
                           std::uint64_t seed, int effort, int threads, const py::object& progress) {
   cmaps::IntersurfaceOptions options;
   const std::optional<cmaps::IntersurfaceMethod> chosen = cmaps::parse_method(method);
@@ -60,6 +60,8 @@ py::dict intersurface_map(const py::handle& mesh_a, const py::handle& mesh_b, co
   options.balance_rounds = balance_rounds;
   if (cross_sweeps < 0) raise(PyExc_ValueError, "cross_sweeps must be at least 0, got " + std::to_string(cross_sweeps));
   options.cross_sweeps = cross_sweeps;
+  if (cross_turns < 1) raise(PyExc_ValueError, "cross_turns must be at least 1, got " + std::to_string(cross_turns));
+  options.cross_turns = cross_turns;
   if (optimize < 0) raise(PyExc_ValueError, "optimize must be at least 0, got " + std::to_string(optimize));
   if (restarts < 1) raise(PyExc_ValueError, "restarts must be at least 1, got " + std::to_string(restarts));
   options.restarts = restarts;
@@ -205,6 +207,7 @@ void bind_intersurface(py::module_& m) {
         py::arg("optimize") = cmaps::IntersurfaceOptions{}.optimize_rounds,
         py::arg("restarts") = 1, py::arg("corner_images") = false, py::arg("balance_rounds") = 4,
         py::arg("cross_sweeps") = cmaps::IntersurfaceOptions{}.cross_sweeps,
+        py::arg("cross_turns") = cmaps::IntersurfaceOptions{}.cross_turns,
         py::arg("starts") = cmaps::IntersurfaceOptions{}.starts,
         py::arg("method") = "auto", py::arg("seed") = 1, py::arg("effort") = 1, py::arg("threads") = 2,
         py::arg("progress") = py::none(),
@@ -227,8 +230,8 @@ void bind_intersurface(py::module_& m) {
         "(area-normalized, optimum 4, each source triangle mapped linearly onto its corners' images),\n"
         "'flipped', 'degenerate', and 'composition_dirichlet' before the distortion optimization (optimize:\n"
         "its rounds, 0 = no optimization: for genus 0 the plain composition of the spherical maps; the\n"
-        "direct map's optimization also moves A's vertices across the partition's paths, at most\n"
-        "cross_sweeps sweeps, 0 = the paths stay walls);\n"
+        "direct map's optimization also moves vertices across the partition's paths, A's then B's and so on,\n"
+        "cross_turns turns of at most cross_sweeps sweeps, 0 sweeps = the paths stay walls);\n"
         "'median_symmetric_dirichlet' (the median triangle's; the mean is dominated by a few triangles);\n"
         "'restart_dirichlet', 'restart_median_dirichlet' and 'restart_flipped', the energies and\n"
         "folded samples (both directions summed) of each of the `restarts` maps through the sphere (restart k:\n"
@@ -249,7 +252,7 @@ void bind_intersurface(py::module_& m) {
         "'a_along_paths' (mA,) and 'b_along_paths' (mB,) int8, the direct map kept (else empty): where each\n"
         "input triangle lies against the partition's paths, 0 away, 1 a corner on a path, 2 cut by one\n"
         "(the direct map's distortion and folds gather there); 'moved': 'A' or 'B', the mesh whose vertices the\n"
-        "direct map's optimization moved over the other's fixed embedding (None for the sphere's map);\n"
+        "direct map's optimization moved first over the other's embedding (None for the sphere's map);\n"
         "'sphere_flipped', 'stretch_efficiency' and 'steiner' of the two spherical maps (genus 0);\n"
         "'map_flipped': the map's own folds, 0 when it is bijective as computed ('flipped' counts those of the\n"
         "vertex sampling): through the sphere 'sphere_flipped', directly the triangles of A and of B turned\n"

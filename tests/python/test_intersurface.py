@@ -272,6 +272,14 @@ def test_genus_one_map(native):
     expect_exact(walls, a, b)
     with pytest.raises(ValueError, match="cross_sweeps must be at least 0, got -1"):
         native.intersurface_map(a, b, [[0, 7]], cross_sweeps=-1)
+    # With A's vertices alone crossing (B's paths left straight in its patches), the map is more distorted
+    # than with B's crossing after them (the default's second turn).
+    one_turn = native.intersurface_map(a, b, [[0, 7]], cross_turns=1)
+    assert sum(r["median_symmetric_dirichlet"]) < sum(one_turn["median_symmetric_dirichlet"])
+    assert one_turn["map_flipped"] == 0
+    expect_exact(one_turn, a, b)
+    with pytest.raises(ValueError, match="cross_turns must be at least 1, got 0"):
+        native.intersurface_map(a, b, [[0, 7]], cross_turns=0)
 
 
 def test_genus_one_map_reports_where_its_paths_run(native):
@@ -468,6 +476,11 @@ def test_cli_usage(cmaps_binary, tmp_path):
     assert result.returncode == 2 and "--cross-sweeps expects an integer in [0, 10000], got '-1'" in result.stderr
     result = run(cmaps_binary, "consistent", SPOT, SPHERE, "-o", tmp_path / "c", "--cross-sweeps", "1")
     assert result.returncode == 2 and "consistent takes no --cross-sweeps (only intersurface and transfer do)" \
+        in result.stderr
+    result = run(cmaps_binary, "intersurface", SPOT, SPHERE, "-o", tmp_path / "out", "--cross-turns", "0")
+    assert result.returncode == 2 and "--cross-turns expects an integer in [1, 100], got '0'" in result.stderr
+    result = run(cmaps_binary, "sphere", SPOT, "-o", tmp_path / "s.obj", "--cross-turns", "2")
+    assert result.returncode == 2 and "sphere takes no --cross-turns (only intersurface and transfer do)" \
         in result.stderr
     result = run(cmaps_binary, "intersurface", SPOT, SPHERE, "-o", tmp_path / "out", "--starts", "0")
     assert result.returncode == 2 and "--starts expects an integer in [1, 100], got '0'" in result.stderr

@@ -56,8 +56,9 @@
 // distortion. A's embedding is locally optimized inside the patches and
 // along the paths, then across them: its vertices move over the base mesh
 // glued flat around the features, into the neighbouring patch when a move
-// crosses a path (IntersurfaceOptions::cross_sweeps), so the paths where
-// the partition was traced stop being walls (as in Schreiner et al., though
+// crosses a path (IntersurfaceOptions::cross_sweeps), then B's against A's
+// embedding as it is then (cross_turns), so the paths where the partition
+// was traced stop being walls on both meshes (as in Schreiner et al., though
 // on the full meshes, not during a progressive refinement). Continuous and
 // bijective. With zero pairs, one pair is chosen: A's vertex farthest from
 // its centroid and B's vertex nearest it with centroids and areas matched.
@@ -166,6 +167,13 @@ struct IntersurfaceOptions {
   // (each into the neighbouring patch when a move crosses one), so the
   // paths where the partition was traced stop being walls; 0: they stay.
   int cross_sweeps = 20;
+  // The direct map: the two meshes take turns crossing the paths, A's
+  // vertices first (each turn at most cross_sweeps sweeps), each against the
+  // other's embedding as the turn before left it. With one turn, B's
+  // embedding stays as its patches laid it out, each path straight along
+  // its base edge: the triangles beside B's paths stay sheared, and most of
+  // the map's folds sit there (BENCHMARKS.md).
+  int cross_turns = 2;
   // Genus >= 1: rounds of moving the partition's paths so that corresponding
   // patches take equal shares of their surfaces (intersurface/patch_balance.h);
   // the map through the moved partition is kept only if its summed median
@@ -254,8 +262,8 @@ struct IntersurfaceResult {
   // The direct map's distortion and folds gather along its paths, where
   // the patch embeddings lay each path straight (BENCHMARKS.md).
   std::vector<std::int8_t> a_along_paths, b_along_paths;
-  // The direct map kept moved B's vertices over A's fixed embedding (it was
-  // traced and optimized from B's side); false: A's moved.
+  // The direct map kept was traced and optimized from B's side: B's
+  // vertices moved first (then A's, and so on: cross_turns); false: A's.
   bool moved_b = false;
   // Per restart through the sphere (genus 0), or of the direct map (genus
   // >= 1 or method partition, a pair without features or holes, more than

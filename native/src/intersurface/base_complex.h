@@ -22,6 +22,8 @@ class BaseComplex {
   // nothing crosses into a hole or out of it.
   BaseComplex(const ConsistentPartition& partition, const std::vector<char>& fan);
 
+  int triangles() const { return int(glue_.size()); }
+
   // The triangle across side k (corner k to corner k + 1) of t; -1 when none.
   int neighbour(int t, int k) const { return glue_[t][k].neighbour; }
   // A point of that neighbour's canonical plane in t's plane.

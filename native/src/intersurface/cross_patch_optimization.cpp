@@ -62,16 +62,17 @@ std::vector<char> fan_patches(const ConsistentPartition& partition) {
 
 CrossPatchMap::CrossPatchMap(const ConsistentPartition& partition, const PatchParameterization& uv_a,
                              const PatchParameterization& uv_b)
-    : a_(partition.sides[0]),
-      b_(partition.sides[1]),
-      uv_b_(uv_b),
+    : CrossPatchMap(partition, 0, glue_patches(partition.sides[0], uv_a), glue_patches(partition.sides[1], uv_b)) {}
+
+CrossPatchMap::CrossPatchMap(const ConsistentPartition& partition, int moving, GluedEmbedding a, GluedEmbedding b)
+    : a_(partition.sides[moving]),
+      b_(partition.sides[1 - moving]),
       fan_(fan_patches(partition)),
       base_(partition, fan_),
-      scale_(std::sqrt(side_area(partition.sides[0]) / side_area(partition.sides[1]))) {
-  const int patches = int(partition.triangles.size());
+      a_glued_(a_, base_, std::move(a)),
+      b_glued_(b_, base_, std::move(b)),
+      scale_(std::sqrt(side_area(a_) / side_area(b_))) {
   const int na = a_.mesh.vertex_count(), nb = b_.mesh.vertex_count();
-  const std::vector<std::vector<int>> faces_a = faces_by_patch(a_, patches), faces_b = faces_by_patch(b_, patches);
-
   shape_a_.resize(a_.mesh.triangles().size());
   for (int f = 0; f < int(shape_a_.size()); ++f) shape_a_[f] = a_.in_fan(f) ? SourceTriangle() : shape_of(a_, f);
   shape_b_.resize(b_.mesh.triangles().size());
@@ -79,51 +80,32 @@ CrossPatchMap::CrossPatchMap(const ConsistentPartition& partition, const PatchPa
   split_a_ = split_triangles(a_);
   split_b_ = split_triangles(b_);
 
-  // A's vertices: a home each (a surface patch beside a rim vertex, not its hole's fan).
-  home_.assign(na, -1);
-  point_.assign(na, Vec2::Zero());
+  // Base vertices and the vertices of holes' fans (rims included) stay.
   fixed_.assign(na, 0);
   for (int v = 0; v < na; ++v) {
     const std::vector<int>& faces = a_.mesh.faces_of(v);
-    const auto surface = std::find_if(faces.begin(), faces.end(), [&](int f) { return !a_.in_fan(f); });
-    home_[v] = a_.patch[surface != faces.end() ? *surface : faces.front()];
-    point_[v] = uv_a.uv[home_[v]].at(v);
-    if (surface == faces.end() || std::any_of(faces.begin(), faces.end(), [&](int f) { return a_.in_fan(f); }))
-      fixed_[v] = 1;
+    fixed_[v] = std::any_of(faces.begin(), faces.end(), [&](int f) { return a_.in_fan(f); });
   }
-  base_vertex_.assign(na, -1);
-  for (int k = 0; k < int(a_.feature_vertex.size()); ++k) {
-    fixed_[a_.feature_vertex[k]] = 1;
-    base_vertex_[a_.feature_vertex[k]] = k;
-  }
+  for (int v : a_.feature_vertex) fixed_[v] = 1;
   double turning = 0;
   for (int f = 0; f < int(a_.mesh.triangles().size()); ++f) {
-    const Triangle& t = a_.mesh.triangles()[f];
-    const auto& uv = uv_a.uv[a_.patch[f]];
-    turning += twice_signed_area(uv.at(t[0]), uv.at(t[1]), uv.at(t[2]));
+    std::array<Vec2, 3> c;
+    if (!a_.in_fan(f) && a_glued_.develop_triangle(f, {1, 1, 1}, c) >= 0)
+      turning += twice_signed_area(c[0], c[1], c[2]);
   }
   orientation_ = turning >= 0 ? 1 : -1;
 
-  locate_b_.reserve(patches);
-  for (int t = 0; t < patches; ++t) locate_b_.emplace_back(b_, uv_b.uv[t], faces_b[t]);
+  locate_b_ = b_glued_.locators();
   image_.resize(na);
-  for (int v = 0; v < na; ++v) image_[v] = image_on_b(home_[v], point_[v]);
+  for (int v = 0; v < na; ++v) image_[v] = image_on_b(a_glued_.home(v), a_glued_.point(v));
 
-  // B's vertices: their canonical points (surface patches first), each in A's triangle holding it.
-  b_points_.resize(nb);
-  for (int pass = 0; pass < 2; ++pass)
-    for (int t = 0; t < patches; ++t)
-      if (fan_[t] == pass)
-        for (const auto& [w, p] : uv_b.uv[t]) b_points_[w].push_back({t, p});
+  // B's vertices, each in A's triangle holding it.
   host_.resize(nb);
   back_image_.resize(nb);
   hosted_.assign(a_.mesh.triangles().size(), {});
-  std::vector<PatchLocator> locate_a;
-  locate_a.reserve(patches);
-  for (int t = 0; t < patches; ++t) locate_a.emplace_back(a_, uv_a.uv[t], faces_a[t]);
+  const std::vector<PatchLocator> locate_a = a_glued_.locators();
   for (int w = 0; w < nb; ++w) {
-    const auto& [t, p] = b_points_[w].front();
-    const auto [f, weights] = locate_a[t].locate(p);
+    const auto [f, weights] = locate_a[b_glued_.home(w)].locate(b_glued_.point(w));
     host_[w] = {f, weights};
     hosted_[f].push_back(w);
     back_image_[w] = image_in(a_, f, weights, 1 / scale_);
@@ -160,24 +142,6 @@ double CrossPatchMap::total_energy() const {
   return area > 0 ? e / area : 0;
 }
 
-bool CrossPatchMap::develop(int u, int t, const Vec2& near, Vec2& result) const {
-  return base_vertex_[u] >= 0 ? base_.develop_corner(base_vertex_[u], t, near, result)
-                              : base_.develop(home_[u], point_[u], t, near, result);
-}
-
-int CrossPatchMap::develop_triangle(int f, const std::array<double, 3>& weights, std::array<Vec2, 3>& corners) const {
-  const Triangle& t = a_.mesh.triangles()[f];
-  int anchor = -1;
-  for (int k = 0; k < 3; ++k)
-    if (base_vertex_[t[k]] < 0 && (anchor < 0 || weights[k] > weights[anchor])) anchor = k;
-  const int plane = anchor < 0 ? a_.patch[f] : home_[t[anchor]];
-  const Vec2 near = anchor < 0 ? Vec2((kCanonicalCorner[0] + kCanonicalCorner[1] + kCanonicalCorner[2]) / 3)
-                               : point_[t[anchor]];
-  for (int k = 0; k < 3; ++k)
-    if (!develop(t[k], plane, near, corners[k])) return -1;
-  return plane;
-}
-
 // What a vertex's trials share, gathered once per move: v's ring (v and its
 // neighbours) developed into the plane of v's base triangle, the base
 // vertices near (corners of that triangle and of its neighbours) and B's
@@ -205,23 +169,24 @@ void sort_unique(std::vector<int>& values) {
 }  // namespace
 
 bool CrossPatchMap::gather_ring(int v, Ring& ring) const {
-  const int t = home_[v];
+  const int t = a_glued_.home(v);
+  const Vec2& point = a_glued_.point(v);
   const std::vector<int>& faces = a_.mesh.faces_of(v);
-  ring.at[v] = point_[v];
+  ring.at[v] = point;
   for (int f : faces)
     for (int u : a_.mesh.triangles()[f])
-      if (!ring.at.count(u) && !develop(u, t, point_[v], ring.at[u])) return false;
+      if (!ring.at.count(u) && !a_glued_.develop(u, t, point, ring.at[u])) return false;
   for (int f : faces) {
     const Triangle& tri = a_.mesh.triangles()[f];
     ring.corners.push_back({ring.at.at(tri[0]), ring.at.at(tri[1]), ring.at.at(tri[2])});
     ring.slot.push_back(int(std::find(tri.begin(), tri.end(), v) - tri.begin()));
     ring.index.push_back(int(ring.index.size()));
   }
-  ring.low = ring.high = point_[v];
+  ring.low = ring.high = point;
   for (const auto& [u, p] : ring.at)
     if (u != v) {
       ring.low = ring.low.cwiseMin(p), ring.high = ring.high.cwiseMax(p);
-      ring.length += (p - point_[v]).norm();
+      ring.length += (p - point).norm();
     }
   ring.length /= std::max<std::size_t>(1, ring.at.size() - 1);
   ring.base_points.assign(kCanonicalCorner, kCanonicalCorner + 3);
@@ -230,13 +195,8 @@ bool CrossPatchMap::gather_ring(int v, Ring& ring) const {
       for (const Vec2& c : kCanonicalCorner) ring.base_points.push_back(base_.from_neighbour(t, k, c));
   for (int f : faces)
     for (int w : hosted_[f]) {
-      Vec2 at = Vec2::Zero();
-      double nearest = kChordInf;
-      for (const auto& [s, p] : b_points_[w]) {
-        Vec2 developed;
-        if (base_.develop(s, p, t, point_[v], developed) && (developed - point_[v]).squaredNorm() < nearest)
-          nearest = (developed - point_[v]).squaredNorm(), at = developed;
-      }
+      Vec2 at;
+      if (!b_glued_.develop(w, t, point, at)) return false;
       ring.hosted.push_back({w, at});
       ring.touched.insert(ring.touched.end(), b_.mesh.faces_of(w).begin(), b_.mesh.faces_of(w).end());
       ring.touched_split.insert(ring.touched_split.end(), split_b_.of_vertex[w].begin(),
@@ -266,7 +226,7 @@ CrossPatchMap::Move CrossPatchMap::trial(int v, const Vec2& q, const Ring& ring,
       if (w[0] > kInside && w[1] > kInside && w[2] > kInside) return m;
     }
   }
-  if (!base_.home_of(home_[v], q, m.home, m.point)) return m;
+  if (!base_.home_of(a_glued_.home(v), q, m.home, m.point)) return m;
   m.image = image_on_b(m.home, m.point);
 
   // B's vertices inside the ring: the ring triangle holding each with v at q.
@@ -289,7 +249,7 @@ CrossPatchMap::Move CrossPatchMap::trial(int v, const Vec2& q, const Ring& ring,
     moved = image_jacobian(q, m.image.position, 1e-4 * ring.length, [&](const Vec2& x) -> std::optional<Vec3> {
       int home;
       Vec2 at;
-      if (!base_.home_of(home_[v], x, home, at)) return std::nullopt;
+      if (!base_.home_of(a_glued_.home(v), x, home, at)) return std::nullopt;
       return image_on_b(home, at).position;
     });
   double e = 0;
@@ -332,7 +292,7 @@ std::optional<CrossPatchMap::RingTrial> CrossPatchMap::ring_trial(int v, const V
   Ring ring;
   if (fixed_[v] || !gather_ring(v, ring)) return std::nullopt;
   RingTrial result;
-  const Move m = trial(v, point_[v] + offset, ring, gradient ? &result.gradient : nullptr);
+  const Move m = trial(v, a_glued_.point(v) + offset, ring, gradient ? &result.gradient : nullptr);
   if (!std::isfinite(m.energy)) return std::nullopt;
   result.energy = m.energy, result.folded = m.folded, result.length = ring.length;
   return result;
@@ -345,7 +305,7 @@ bool CrossPatchMap::improve(int v) {
   if (inside > std::size_t(kMaxRemapped)) return false;
   Ring ring;
   if (!gather_ring(v, ring)) return false;
-  const Vec2 x0 = point_[v];
+  const Vec2 x0 = a_glued_.point(v);
   PointGradient gradient;
   const Move current = trial(v, x0, ring, &gradient);
   if (!std::isfinite(current.energy)) return false;
@@ -366,8 +326,7 @@ bool CrossPatchMap::improve(int v) {
 }
 
 void CrossPatchMap::apply(int v, const Move& move) {
-  home_[v] = move.home;
-  point_[v] = move.point;
+  a_glued_.move(v, move.home, move.point);
   image_[v] = move.image;
   for (int f : a_.mesh.faces_of(v)) hosted_[f].clear();
   for (const auto& [w, rehost] : move.rehosted) {
@@ -387,10 +346,10 @@ CrossPatchOptimization CrossPatchMap::optimize(int sweeps, const std::function<b
     int moved = 0;
     for (int v = 0; v < n; ++v) {
       if (!active[v]) continue;
-      const int home = home_[v];
+      const int home = a_glued_.home(v);
       if (!improve(v)) continue;
       ++moved;
-      result.crossings += home_[v] != home;
+      result.crossings += a_glued_.home(v) != home;
       for (int f : a_.mesh.faces_of(v))
         for (int u : a_.mesh.triangles()[f]) next[u] = 1;
     }
@@ -404,39 +363,37 @@ CrossPatchOptimization CrossPatchMap::optimize(int sweeps, const std::function<b
   return result;
 }
 
-bool CrossPatchMap::turned(int f) const {
+bool CrossPatchMap::turned(const GluedSide& side, int f) const {
   std::array<Vec2, 3> c;
-  return develop_triangle(f, {1, 1, 1}, c) < 0 || orientation_ * twice_signed_area(c[0], c[1], c[2]) <= 0;
+  return side.develop_triangle(f, {1, 1, 1}, c) < 0 || orientation_ * twice_signed_area(c[0], c[1], c[2]) <= 0;
 }
 
 int CrossPatchMap::turned_triangles() const {
   int count = 0;
-  for (int f = 0; f < int(a_.mesh.triangles().size()); ++f) count += !a_.in_fan(f) && turned(f);
+  for (const GluedSide* side : {&a_glued_, &b_glued_})
+    for (int f = 0; f < int(side->side().mesh.triangles().size()); ++f)
+      count += !side->side().in_fan(f) && turned(*side, f);
   return count;
 }
 
 bool CrossPatchMap::breaks_invariants(int v, const Move& move) {
-  const int home = home_[v];
-  const Vec2 point = point_[v];
-  home_[v] = move.home, point_[v] = move.point;
+  const int home = a_glued_.home(v);
+  const Vec2 point = a_glued_.point(v);
+  a_glued_.move(v, move.home, move.point);
   const std::vector<int>& faces = a_.mesh.faces_of(v);
   const bool broken =
-      std::any_of(faces.begin(), faces.end(), [&](int f) { return !a_.in_fan(f) && turned(f); }) ||
+      std::any_of(faces.begin(), faces.end(), [&](int f) { return !a_.in_fan(f) && turned(a_glued_, f); }) ||
       std::any_of(move.rehosted.begin(), move.rehosted.end(),
                   [&](const auto& rehost) { return strays(rehost.first, rehost.second.at.face); });
-  home_[v] = home, point_[v] = point;
+  a_glued_.move(v, home, point);
   return broken;
 }
 
 bool CrossPatchMap::strays(int w, int face) const {
   std::array<Vec2, 3> c;
-  const int plane = develop_triangle(face, {1, 1, 1}, c);
+  const int plane = a_glued_.develop_triangle(face, {1, 1, 1}, c);
   Vec2 at;
-  for (const auto& [patch, p] : b_points_[w])
-    if (plane >= 0 && base_.develop(patch, p, plane, (c[0] + c[1] + c[2]) / 3, at) &&
-        distance_outside(at, c) <= kOnEdge)
-      return false;
-  return true;
+  return plane < 0 || !b_glued_.develop(w, plane, (c[0] + c[1] + c[2]) / 3, at) || distance_outside(at, c) > kOnEdge;
 }
 
 int CrossPatchMap::stray_hosts() const {
@@ -457,7 +414,7 @@ RefinedPoint CrossPatchMap::locate_on_a(int patch, const Vec2& point, int near_f
       // The triangle in its own plane (its corners lie close together, so
       // their nearest copies are the right ones), the point carried there.
       std::array<Vec2, 3> corner;
-      const int plane = develop_triangle(f, {1, 1, 1}, corner);
+      const int plane = a_glued_.develop_triangle(f, {1, 1, 1}, corner);
       Vec2 at;
       if (plane < 0 || !base_.develop(patch, point, plane, (corner[0] + corner[1] + corner[2]) / 3, at)) continue;
       const auto weights = barycentric(at, corner[0], corner[1], corner[2]);
@@ -468,10 +425,20 @@ RefinedPoint CrossPatchMap::locate_on_a(int patch, const Vec2& point, int near_f
   return best;
 }
 
+std::vector<InputLocation> CrossPatchMap::located_on_b(const std::vector<std::pair<int, Vec2>>& points,
+                                                       const TriangleMesh& b_input, int threads) const {
+  std::vector<InputLocation> image(points.size());
+  parallel_for(points.size(), threads, [&](std::size_t i) {
+    const auto [face, w] = locate_b_[points[i].first].locate(points[i].second);
+    image[i] = to_input(b_, b_input, face, w);
+  });
+  return image;
+}
+
 std::vector<InputLocation> CrossPatchMap::map_a(const TriangleMesh& b_input, int threads) const {
   std::vector<std::pair<int, Vec2>> points(a_.mesh.input_vertex_count());
-  for (int v = 0; v < int(points.size()); ++v) points[v] = {home_[v], point_[v]};
-  std::vector<InputLocation> image = locate_canonical(b_, uv_b_, b_input, points, threads);
+  for (int v = 0; v < int(points.size()); ++v) points[v] = {a_glued_.home(v), a_glued_.point(v)};
+  std::vector<InputLocation> image = located_on_b(points, b_input, threads);
   snap_features(a_, b_, b_input, image);
   return image;
 }
@@ -483,23 +450,20 @@ std::vector<InputLocation> CrossPatchMap::map_b(const TriangleMesh& a_input) con
   return image;
 }
 
+std::pair<int, Vec2> CrossPatchMap::canonical_point(const GluedSide& side, const RefinedPoint& p) {
+  std::pair<int, Vec2> at;
+  if (side.canonical_point(p.face, p.weights, at.first, at.second)) return at;
+  // Never, short of a broken embedding: the nearest corner's own point.
+  const int nearest = nearest_corner(side.side(), p);
+  return {side.home(nearest), side.point(nearest)};
+}
+
 std::vector<InputLocation> CrossPatchMap::map_a_corners(const TriangleMesh& a_input, const TriangleMesh& b_input,
                                                         int threads) const {
   const std::vector<RefinedPoint> corners = corner_points(a_, a_input, threads);
   std::vector<std::pair<int, Vec2>> points(corners.size());
-  parallel_for(corners.size(), threads, [&](std::size_t i) {
-    // The triangle developed into the plane of its corner nearest the point.
-    std::array<Vec2, 3> c;
-    const int plane = develop_triangle(corners[i].face, corners[i].weights, c);
-    Vec2 p = Vec2::Zero();
-    for (int k = 0; k < 3; ++k) p += corners[i].weights[k] * c[k];
-    if (plane < 0 || !base_.home_of(plane, p, points[i].first, points[i].second)) {
-      // Never, short of a broken embedding: the nearest corner's own point.
-      const int nearest = nearest_corner(a_, corners[i]);
-      points[i] = {home_[nearest], point_[nearest]};
-    }
-  });
-  return locate_canonical(b_, uv_b_, b_input, points, threads);
+  parallel_for(corners.size(), threads, [&](std::size_t i) { points[i] = canonical_point(a_glued_, corners[i]); });
+  return located_on_b(points, b_input, threads);
 }
 
 std::vector<InputLocation> CrossPatchMap::map_b_corners(const TriangleMesh& a_input, const TriangleMesh& b_input,
@@ -507,7 +471,7 @@ std::vector<InputLocation> CrossPatchMap::map_b_corners(const TriangleMesh& a_in
   const std::vector<RefinedPoint> corners = corner_points(b_, b_input, threads);
   std::vector<InputLocation> image(corners.size());
   parallel_for(corners.size(), threads, [&](std::size_t i) {
-    const auto [patch, p] = canonical_point(b_, uv_b_, corners[i]);
+    const auto [patch, p] = canonical_point(b_glued_, corners[i]);
     const RefinedPoint on_a = locate_on_a(patch, p, host_[nearest_corner(b_, corners[i])].face);
     image[i] = to_input(a_, a_input, on_a.face, on_a.weights);
   });

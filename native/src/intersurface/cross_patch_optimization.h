@@ -13,6 +13,13 @@
 // cut by paths included (split_triangles.h). A vertex whose ring holds a
 // folded chord steps first against the gradient of the folded area.
 //
+// Either side can move: below, A is the moving side and B the fixed one,
+// both glued embeddings (glued_side.h), so after A's vertices crossed B can
+// cross against A's embedding as it is then (Schreiner et al. refine both
+// meshes): the fixed side of a map from its patch embeddings never moves,
+// and its paths' shear (each path laid straight, turning on the surface)
+// stays otherwise.
+//
 // Invariants: base vertices (the features) and hole fans stay where they
 // are; a move keeps every triangle of the vertex's ring turning the same
 // way as the whole embedding and holding no base vertex inside, and the
@@ -28,6 +35,7 @@
 
 #include "intersurface/base_complex.h"
 #include "intersurface/chord_energy.h"
+#include "intersurface/glued_side.h"
 #include "intersurface/map_gradient.h"
 #include "intersurface/patch_locator.h"
 #include "intersurface/split_triangles.h"
@@ -41,18 +49,23 @@ struct CrossPatchOptimization {
 
 class CrossPatchMap {
  public:
+  // A = partition.sides[moving], B = the other side, at their glued embeddings.
+  CrossPatchMap(const ConsistentPartition& partition, int moving, GluedEmbedding a, GluedEmbedding b);
   // A = partition.sides[0] with its patch embeddings `uv_a`, B = sides[1]
   // with `uv_b`.
   CrossPatchMap(const ConsistentPartition& partition, const PatchParameterization& uv_a,
                 const PatchParameterization& uv_b);
+
+  // A's embedding as it is now (for B to move against next).
+  const GluedEmbedding& moved() const { return a_glued_.embedding(); }
 
   // Sweeps over A's vertices (after the first, those whose ring changed)
   // until one moves nothing or `sweeps` are done. `keep_going(fraction
   // done)` is asked after each sweep; false throws Cancelled.
   CrossPatchOptimization optimize(int sweeps, const std::function<bool(double)>& keep_going = {});
 
-  // The invariants, counted (both 0 unless broken): A's triangles that turn
-  // the wrong way in the plane of their first corner's base triangle, and
+  // The invariants, counted (both 0 unless broken): A's and B's triangles
+  // that turn the wrong way in the plane of their corners (glued_side.h), and
   // B's vertices that lie outside the triangle of A said to hold them, by
   // more than 1e-9 of the canonical side (not in barycentric weight: a
   // vertex of B on a path has a point in each patch beside it, embedded
@@ -90,9 +103,9 @@ class CrossPatchMap {
   struct Ring;
   double total_energy() const;
   bool improve(int v);
-  // Whether A's triangle f turns the wrong way in the plane of its first
-  // corner's base triangle (turned_triangles counts them).
-  bool turned(int f) const;
+  // Whether the side's triangle f turns the wrong way in its corners' plane
+  // (turned_triangles counts them).
+  bool turned(const GluedSide& side, int f) const;
   // Whether B's vertex w lies outside A's triangle `face`, developed into
   // that triangle's own plane (stray_hosts counts those of the hosts).
   bool strays(int w, int face) const;
@@ -105,12 +118,6 @@ class CrossPatchMap {
   // around that triangle.
   bool breaks_invariants(int v, const Move& move);
   bool gather_ring(int v, Ring& ring) const;
-  // A's vertex u in base triangle t's plane, the copy nearest `near`.
-  bool develop(int u, int t, const Vec2& near, Vec2& result) const;
-  // A's triangle f developed into the plane of its corner of largest weight
-  // that is no base vertex (base vertices lie in several base triangles);
-  // that plane, or -1 when a corner cannot be developed.
-  int develop_triangle(int f, const std::array<double, 3>& weights, std::array<Vec2, 3>& corners) const;
   // v moved to q of its ring's plane: the move, with its energy (inf when
   // not allowed); with `gradient`, also the energy's derivative by q.
   Move trial(int v, const Vec2& q, const Ring& ring, PointGradient* gradient = nullptr) const;
@@ -118,24 +125,25 @@ class CrossPatchMap {
   // B's point (a base triangle and canonical point of B's embedding) on A,
   // among A's triangles around `near_face`: the triangle and weights.
   RefinedPoint locate_on_a(int patch, const Vec2& point, int near_face) const;
+  // Canonical points (base triangle, point) located on B's input triangles.
+  std::vector<InputLocation> located_on_b(const std::vector<std::pair<int, Vec2>>& points,
+                                          const TriangleMesh& b_input, int threads) const;
+  // A point of a side's refined mesh as a base triangle and canonical point.
+  static std::pair<int, Vec2> canonical_point(const GluedSide& side, const RefinedPoint& p);
   Image image_on_b(int home, const Vec2& point) const;
 
   const PartitionSide& a_;
   const PartitionSide& b_;
-  const PatchParameterization& uv_b_;
   const std::vector<char> fan_;  // per base triangle: whether it is a hole's fan
   BaseComplex base_;
+  GluedSide a_glued_, b_glued_;
   double scale_ = 1;        // B scaled to A's area
   double orientation_ = 1;  // how A's embedding turns in the canonical plane
-  std::vector<int> home_;   // per vertex of A: its base triangle
-  std::vector<Vec2> point_; // per vertex of A: its canonical point there
   std::vector<char> fixed_; // per vertex of A: base vertices and hole fans
-  std::vector<int> base_vertex_;  // per vertex of A: its base vertex, -1 for none
   std::vector<SourceTriangle> shape_a_, shape_b_;  // per triangle (zero for a hole's fan)
   SplitTriangles split_a_, split_b_;               // input triangles cut by paths, charged by their chords too
   std::vector<Image> image_;               // per vertex of A: its image on B
-  std::vector<PatchLocator> locate_b_;     // per base triangle: B's patch
-  std::vector<std::vector<std::pair<int, Vec2>>> b_points_;  // per vertex of B: its canonical points
+  std::vector<PatchLocator> locate_b_;     // per base triangle: B's triangles reaching into it
   std::vector<RefinedPoint> host_;          // per vertex of B: the triangle of A holding it
   std::vector<Image> back_image_;           // per vertex of B: its image on A
   std::vector<std::vector<int>> hosted_;    // per triangle of A: the vertices of B in it

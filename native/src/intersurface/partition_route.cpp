@@ -67,12 +67,22 @@ void map_partition(ConsistentPartition& partition, const ClosedMesh& closed_a, c
   const int sweeps = options.optimize_rounds > 0 ? options.optimize_sweeps : 0;
   optimize_patch_map(partition.sides[0], uv_a, partition.sides[1], uv_b, sweeps, options.sphere.threads,
                      sweeps > 0 ? kPatchAreaRounds : 0);
-  // Then across the paths (cross_patch_optimization.h).
-  CrossPatchMap across(partition, uv_a, uv_b);
-  if (options.optimize_rounds > 0)
-    across.optimize(options.cross_sweeps, [&](double done) {
-      return !progress || progress(0.3 + 0.4 * done, "optimizing the map across the paths");
-    });
+  // Then across the paths (cross_patch_optimization.h): A's vertices, then
+  // B's against A's embedding as it is then, and so on.
+  const int turns = options.optimize_rounds > 0 && options.cross_sweeps > 0 ? options.cross_turns : 1;
+  std::array<GluedEmbedding, 2> glued{glue_patches(partition.sides[0], uv_a), glue_patches(partition.sides[1], uv_b)};
+  std::unique_ptr<CrossPatchMap> across;
+  for (int turn = 0; turn < turns; ++turn) {
+    const int moving = turn % 2;
+    across = std::make_unique<CrossPatchMap>(partition, moving, glued[moving], glued[1 - moving]);
+    if (options.optimize_rounds > 0)
+      across->optimize(options.cross_sweeps, [&](double done) {
+        return !progress || progress(0.3 + 0.4 * (turn + done) / turns, "optimizing the map across the paths");
+      });
+    glued[moving] = across->moved();
+  }
+  // The map read from A's side (the same map).
+  if (turns % 2 == 0) across = std::make_unique<CrossPatchMap>(partition, 0, glued[0], glued[1]);
   result.seconds_optimize = seconds_since(stage);
 
   stage = Clock::now();
@@ -91,22 +101,21 @@ void map_partition(ConsistentPartition& partition, const ClosedMesh& closed_a, c
       if (p.triangle >= int(target.triangles.size())) throw Error("internal error: a surface point maps into a hole");
     return points;
   };
-  result.a_to_b = surface_only(convert(across.map_a(cb, threads)), a.vertices.size(), b);
-  result.b_to_a = surface_only(convert(across.map_b(ca)), b.vertices.size(), a);
+  result.a_to_b = surface_only(convert(across->map_a(cb, threads)), a.vertices.size(), b);
+  result.b_to_a = surface_only(convert(across->map_b(ca)), b.vertices.size(), a);
   if (options.corner_images) {
-    result.a_corners_to_b = surface_only(convert(across.map_a_corners(ca, cb, threads)), 3 * a.triangles.size(), b);
-    result.b_corners_to_a = surface_only(convert(across.map_b_corners(ca, cb, threads)), 3 * b.triangles.size(), a);
+    result.a_corners_to_b = surface_only(convert(across->map_a_corners(ca, cb, threads)), 3 * a.triangles.size(), b);
+    result.b_corners_to_a = surface_only(convert(across->map_b_corners(ca, cb, threads)), 3 * b.triangles.size(), a);
   }
   result.a_along_paths = along_paths(partition.sides[0]);
   result.b_along_paths = along_paths(partition.sides[1]);
-  result.moved_b = false;  // A's embedding moved (exchange_sides turns this for a map from B's side)
+  result.moved_b = false;  // A's vertices moved first (exchange_sides turns this for a map from B's side)
   result.a_on_b = surface_positions(b, result.a_to_b);
   result.b_on_a = surface_positions(a, result.b_to_a);
   result.seconds_locate = seconds_since(stage);
 
   stage = Clock::now();
-  result.map_flipped =
-      across.turned_triangles() + turned_in_patches(partition.sides[1], uv_b) + across.stray_hosts();
+  result.map_flipped = across->turned_triangles() + across->stray_hosts();
   result.distortion_a_to_b = result.composition_a_to_b = measure_intersurface_map(a, b, result.a_to_b);
   result.distortion_b_to_a = result.composition_b_to_a = measure_intersurface_map(b, a, result.b_to_a);
   result.seconds_measure = seconds_since(stage);

@@ -13,15 +13,30 @@ const double kHeight = std::sqrt(3.0) / 2;  // of the canonical triangle (0, 0),
 
 }  // namespace
 
+namespace {
+
+std::vector<std::array<Vec2, 3>> laid_out(const PartitionSide& side, const std::unordered_map<int, Vec2>& uv,
+                                          const std::vector<int>& faces) {
+  std::vector<std::array<Vec2, 3>> corners;
+  corners.reserve(faces.size());
+  for (int f : faces) {
+    const Triangle& t = side.mesh.triangles()[f];
+    corners.push_back({uv.at(t[0]), uv.at(t[1]), uv.at(t[2])});
+  }
+  return corners;
+}
+
+}  // namespace
+
 PatchLocator::PatchLocator(const PartitionSide& side, const std::unordered_map<int, Vec2>& uv,
                            const std::vector<int>& faces)
-    : faces_(faces) {
-  cells_ = std::max(1, int(std::sqrt(double(faces.size()))));
+    : PatchLocator(faces, laid_out(side, uv, faces)) {}
+
+PatchLocator::PatchLocator(std::vector<int> faces, std::vector<std::array<Vec2, 3>> corners)
+    : faces_(std::move(faces)), corners_(std::move(corners)) {
+  cells_ = std::max(1, int(std::sqrt(double(faces_.size()))));
   buckets_.resize(cells_ * cells_);
-  corners_.reserve(faces.size());
-  for (int i = 0; i < int(faces.size()); ++i) {
-    const Triangle& t = side.mesh.triangles()[faces[i]];
-    corners_.push_back({uv.at(t[0]), uv.at(t[1]), uv.at(t[2])});
+  for (int i = 0; i < int(faces_.size()); ++i) {
     const Vec2 lo = corners_[i][0].cwiseMin(corners_[i][1]).cwiseMin(corners_[i][2]);
     const Vec2 hi = corners_[i][0].cwiseMax(corners_[i][1]).cwiseMax(corners_[i][2]);
     const auto [x0, y0] = cell(lo);

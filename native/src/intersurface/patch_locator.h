@@ -53,6 +53,8 @@ class PatchLocator {
  public:
   // `faces`: the patch's triangles of `side`, `uv` their corners' canonical points.
   PatchLocator(const PartitionSide& side, const std::unordered_map<int, Vec2>& uv, const std::vector<int>& faces);
+  // `faces` laid out at `corners` (glued_side.h: a glued side's triangles reaching into one base triangle).
+  PatchLocator(std::vector<int> faces, std::vector<std::array<Vec2, 3>> corners);
 
   // The triangle holding p (the one it is least outside of, for points a
   // rounding error off the patch) and p's barycentric weights there, clamped

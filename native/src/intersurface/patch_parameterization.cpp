@@ -169,23 +169,6 @@ int turned_in_patches(const PartitionSide& side, const PatchParameterization& uv
   return turned;
 }
 
-std::vector<InputLocation> locate_canonical(const PartitionSide& target, const PatchParameterization& target_uv,
-                                            const TriangleMesh& target_input,
-                                            const std::vector<std::pair<int, Vec2>>& points, int threads) {
-  const int patches = int(target_uv.uv.size());
-  const std::vector<std::vector<int>> faces = faces_by_patch(target, patches);
-  std::vector<PatchLocator> locators;
-  locators.reserve(patches);
-  for (int t = 0; t < patches; ++t) locators.emplace_back(target, target_uv.uv[t], faces[t]);
-  std::vector<InputLocation> image(points.size());
-  parallel_for(int(points.size()), threads, [&](int i) {
-    const auto [face, w] = locators[points[i].first].locate(points[i].second);
-    image[i] = to_input(target, target_input, face, w);
-  });
-  return image;
-}
-
-
 PatchParameterization parameterize_patches(PartitionSide& side, const ConsistentPartition& partition,
                                            int stretch_rounds) {
   split_chords(side);
@@ -247,14 +230,6 @@ std::vector<RefinedPoint> corner_points(const PartitionSide& source, const Trian
     }
   });
   return points;
-}
-
-std::pair<int, Vec2> canonical_point(const PartitionSide& side, const PatchParameterization& uv,
-                                     const RefinedPoint& point) {
-  const int patch = side.patch[point.face];
-  Vec2 at = Vec2::Zero();
-  for (int j = 0; j < 3; ++j) at += point.weights[j] * uv.uv[patch].at(side.mesh.triangles()[point.face][j]);
-  return {patch, at};
 }
 
 }  // namespace cmaps

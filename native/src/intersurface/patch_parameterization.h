@@ -69,12 +69,6 @@ int turned_in_patches(const PartitionSide& side, const PatchParameterization& uv
 // A point of a side's refined mesh (triangle, weights) on its input triangle.
 InputLocation to_input(const PartitionSide& side, const TriangleMesh& input, int face, const std::array<double, 3>& w);
 
-// Canonical points (base triangle, point in its canonical triangle) located
-// in `target`'s patches, on `target_input`'s triangles.
-std::vector<InputLocation> locate_canonical(const PartitionSide& target, const PatchParameterization& target_uv,
-                                            const TriangleMesh& target_input,
-                                            const std::vector<std::pair<int, Vec2>>& points, int threads);
-
 // A point of a side's refined mesh: triangle and barycentric weights.
 struct RefinedPoint {
   int face = -1;
@@ -86,9 +80,5 @@ struct RefinedPoint {
 // there, kCornerNudge at the other two) in the refined mesh, for per-corner
 // values. That point is no feature: it is mapped as it lands.
 std::vector<RefinedPoint> corner_points(const PartitionSide& source, const TriangleMesh& source_input, int threads);
-
-// A refined point's base triangle and canonical point.
-std::pair<int, Vec2> canonical_point(const PartitionSide& side, const PatchParameterization& uv,
-                                     const RefinedPoint& point);
 
 }  // namespace cmaps
