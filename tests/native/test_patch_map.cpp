@@ -181,9 +181,8 @@ TEST(PatchMapOptimization, AreaMatchingNearsTheTruthAndKeepsEveryPatchEmbedded) 
 }
 
 TEST(PatchParameterization, TurnedTrianglesAreCounted) {
-  // What IntersurfaceResult::map_flipped reports for B: 0 for the
-  // embeddings as computed, the triangles turned over once an interior
-  // vertex is pushed past a neighbour.
+  // The patch embeddings' own check: 0 for the embeddings as computed, the
+  // triangles turned over once an interior vertex is pushed past a neighbour.
   CactusPoses poses;
   PartitionSide& side = poses.p.sides[1];
   PatchParameterization uv = parameterize_patches(side, poses.p);
@@ -200,9 +199,9 @@ TEST(PatchParameterization, TurnedTrianglesAreCounted) {
 }
 
 TEST(CrossPatchMap, TurnedTrianglesAreCounted) {
-  // What IntersurfaceResult::map_flipped reports for A: 0 for the
-  // embeddings as computed, the triangles turned over once an interior
-  // vertex of A is pushed past a neighbour. (Every vertex of B is hosted
+  // What IntersurfaceResult::map_flipped reports (both sides' glued
+  // embeddings): 0 for the embeddings as computed, the triangles turned over
+  // once an interior vertex of A is pushed past a neighbour. (Every vertex of B is hosted
   // anew then, and the fan around the pushed vertex still covers its ring,
   // so none strays.)
   CactusPoses poses;
