@@ -81,8 +81,6 @@ void map_partition(ConsistentPartition& partition, const ClosedMesh& closed_a, c
       });
     glued[moving] = across->moved();
   }
-  // The map read from A's side (the same map).
-  if (turns % 2 == 0) across = std::make_unique<CrossPatchMap>(partition, 0, glued[0], glued[1]);
   result.seconds_optimize = seconds_since(stage);
 
   stage = Clock::now();
@@ -101,11 +99,21 @@ void map_partition(ConsistentPartition& partition, const ClosedMesh& closed_a, c
       if (p.triangle >= int(target.triangles.size())) throw Error("internal error: a surface point maps into a hole");
     return points;
   };
-  result.a_to_b = surface_only(convert(across->map_a(cb, threads)), a.vertices.size(), b);
-  result.b_to_a = surface_only(convert(across->map_b(ca)), b.vertices.size(), a);
+  // The last turn's map reads both directions: its moving side's points
+  // located on the fixed side, the fixed side's through their hosts.
+  const bool b_moved_last = (turns - 1) % 2 == 1;
+  const TriangleMesh &moving_input = b_moved_last ? cb : ca, &fixed_input = b_moved_last ? ca : cb;
+  std::vector<InputLocation> moving_to_fixed = across->map_a(fixed_input, threads);
+  std::vector<InputLocation> fixed_to_moving = across->map_b(moving_input);
+  if (b_moved_last) std::swap(moving_to_fixed, fixed_to_moving);
+  result.a_to_b = surface_only(convert(moving_to_fixed), a.vertices.size(), b);
+  result.b_to_a = surface_only(convert(fixed_to_moving), b.vertices.size(), a);
   if (options.corner_images) {
-    result.a_corners_to_b = surface_only(convert(across->map_a_corners(ca, cb, threads)), 3 * a.triangles.size(), b);
-    result.b_corners_to_a = surface_only(convert(across->map_b_corners(ca, cb, threads)), 3 * b.triangles.size(), a);
+    std::vector<InputLocation> moving_corners = across->map_a_corners(moving_input, fixed_input, threads);
+    std::vector<InputLocation> fixed_corners = across->map_b_corners(moving_input, fixed_input, threads);
+    if (b_moved_last) std::swap(moving_corners, fixed_corners);
+    result.a_corners_to_b = surface_only(convert(moving_corners), 3 * a.triangles.size(), b);
+    result.b_corners_to_a = surface_only(convert(fixed_corners), 3 * b.triangles.size(), a);
   }
   result.a_along_paths = along_paths(partition.sides[0]);
   result.b_along_paths = along_paths(partition.sides[1]);
