@@ -272,6 +272,26 @@ TEST(IntersurfaceMap, PerTriangleDistortionShowsWhereTheMapDistorts) {
   EXPECT_EQ(summary.flipped, flipped);
 }
 
+// A sampled triangle whose images lie in no common target triangle is judged
+// against the unit normals of the triangles they lie in, as both map
+// optimizers judge folds (surface_image.h): here two images lie near the
+// edge of a large flat triangle and one on a small fin folded back over it,
+// and the chord faces against the sum of the unit normals (folded), though
+// not against the area-weighted sum, where the large triangle alone decides.
+TEST(IntersurfaceMap, FoldsAreJudgedWithUnitNormals) {
+  TriangleMesh target;
+  target.vertices = {{0, 0, 0}, {1, 0, 0}, {0.5, 10, 0}, {0.5, 0.05, 0.1}};
+  target.triangles = {{0, 1, 2}, {1, 0, 3}};  // large, normal +z; the fin, normal (0, 0.89, -0.45)
+  const std::vector<SurfacePoint> image = {
+      {0, {0.59995, 0.39995, 0.0001}}, {0, {0.39995, 0.59995, 0.0001}}, {1, {0.25, 0.25, 0.5}}};
+  TriangleMesh source;  // flat in z = 0: its volume, closed, is exactly 0, so it faces like the target either way round
+  source.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  source.triangles = {{0, 1, 2}};
+  EXPECT_TRUE(triangle_distortion(source, target, image).flipped[0]);
+  source.triangles = {{0, 2, 1}};  // the other way round faces with the surface
+  EXPECT_FALSE(triangle_distortion(source, target, image).flipped[0]);
+}
+
 // An open mesh's signed volume depends on where the origin lies, so which
 // way a mesh faces is judged with its holes closed: a face mapped onto a
 // far-off copy of itself folds nothing, wherever the copy lies, and with two
