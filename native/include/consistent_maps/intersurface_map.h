@@ -192,11 +192,12 @@ constexpr double kCornerNudge = 1e-3;
 // energy |J|^2 + |J^-1|^2 is averaged over the source's area (optimum 4, an
 // isometry). Image triangles of zero area are left out of the average and
 // counted in `degenerate`; `flipped` counts image triangles whose normal
-// points against the target surface's normal there (the area-weighted normal
-// of the target triangles holding the three images; the target's normals
-// turned when one mesh, its holes closed, lists its triangles inwards and the
-// other outwards). Both are properties of
-// this vertex sampling: the map itself is bijective (see map_flipped).
+// points against the target surface's normal there (the normal of a target
+// triangle holding all three images, else the unit normals of the triangles
+// holding each, summed, as the map optimizers judge folds; the target's
+// normals turned when one mesh, its holes closed, lists its triangles
+// inwards and the other outwards). Both are properties of this vertex
+// sampling: the map itself is bijective (see map_flipped).
 // The mean is dominated by the few most distorted triangles (often
 // near-degenerate samples); `median_symmetric_dirichlet`, the median
 // triangle's energy (degenerate images counted as infinite), says how
