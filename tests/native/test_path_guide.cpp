@@ -1,10 +1,13 @@
 // The transform that brings B into A's frame for the guided partition
 // (intersurface/path_guide.h): exact when the pairs are related by an affine
-// map or a similarity, the centroids and areas without pairs, and the step
-// factor 1 on A's path itself.
+// map or a similarity, the centroids and areas without pairs (on request B
+// turned onto A's principal axes when that matches clearly closer), and the
+// step factor 1 on A's path itself.
 #include <gtest/gtest.h>
 
+#include "consistent_maps/mesh_io.h"
 #include "intersurface/path_guide.h"
+#include "test_support.h"
 
 namespace cmaps {
 namespace {
@@ -55,6 +58,26 @@ TEST(PathGuide, SimilarityFromThreePairsAndCentroidsWithout) {
   EXPECT_LT((none.to_a(cb) - ca).norm(), 1e-12);
   EXPECT_NEAR((none.to_a(b.vertices[1]) - none.to_a(b.vertices[0])).norm(), (a.vertices[1] - a.vertices[0]).norm(),
               1e-12);
+}
+
+// Without pairs a mesh turned a quarter about one axis and tilted (the cow
+// along y, as the horse lies, against itself along x) is turned back: every
+// vertex lands on its own copy. Unturned, the cow stays crosswise.
+TEST(PathGuide, TurnsBOntoAsPrincipalAxesWithoutPairs) {
+  const TriangleMesh a = read_mesh(test::shared_mesh("genus0/cow.off"));
+  const Eigen::Affine3d to_b = Eigen::Translation3d(5, -2, 1) * Eigen::AngleAxisd(0.2, Vec3::UnitX()) *
+                               Eigen::AngleAxisd(EIGEN_PI / 2, Vec3::UnitZ()) * Eigen::Scaling(1.5);
+  const TriangleMesh b = moved(a, to_b);
+  const double diagonal = test::diagonal(a);
+  for (const int pairs : {0, 1}) {
+    const std::vector<Vec3> on_a(a.vertices.begin(), a.vertices.begin() + pairs),
+        on_b(b.vertices.begin(), b.vertices.begin() + pairs);
+    const PathGuide guide(on_a, on_b, a, b, /*turn=*/true);
+    double worst = 0;
+    for (size_t i = 0; i < a.vertices.size(); ++i)
+      worst = std::max(worst, (guide.to_a(b.vertices[i]) - a.vertices[i]).norm());
+    EXPECT_LT(worst, 1e-3 * diagonal) << pairs << " pairs";
+  }
 }
 
 }  // namespace

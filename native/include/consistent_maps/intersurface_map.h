@@ -61,7 +61,11 @@
 // was traced stop being walls on both meshes (as in Schreiner et al., though
 // on the full meshes, not during a progressive refinement). Continuous and
 // bijective. With zero pairs, one pair is chosen: A's vertex farthest from
-// its centroid and B's vertex nearest it with centroids and areas matched.
+// its centroid and B's vertex nearest it with centroids and areas matched (B
+// turned onto A's principal axes when that matches clearly closer). Genus 0
+// gets at least 4 pairs: A's vertices after the first farthest from those
+// paired, each partner the one of B's 8 farthest-point extremities nearest
+// A's vertex in A's frame.
 // Holes (thesis 5.4, boundaries): each is closed by a fan around a temporary
 // centre, holes are paired (by pairs on their rims, else by nearest centres
 // in A's frame), each rim pair gets at least 3 corresponding features, and

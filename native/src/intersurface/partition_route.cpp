@@ -23,32 +23,79 @@
 namespace cmaps {
 namespace {
 
-// The vertex of `mesh` farthest from `point`.
-int farthest_from(const TriangleMesh& mesh, const Vec3& point) {
-  int best = 0;
-  for (int v = 1; v < int(mesh.vertices.size()); ++v)
-    if ((mesh.vertices[v] - point).squaredNorm() > (mesh.vertices[best] - point).squaredNorm()) best = v;
-  return best;
-}
+constexpr std::size_t kSphereBasePairs = 4;
+constexpr std::size_t kBaseCandidates = 8;  // extremities of B a new pair may take
 
 // The vertex farthest from the centroid: the automatic feature of a mesh.
 int farthest_from_centroid(const TriangleMesh& mesh) {
   Vec3 centroid = Vec3::Zero();
   for (const Vec3& v : mesh.vertices) centroid += v;
-  return farthest_from(mesh, centroid / double(mesh.vertices.size()));
+  centroid /= double(mesh.vertices.size());
+  int best = 0;
+  for (int v = 1; v < int(mesh.vertices.size()); ++v)
+    if ((mesh.vertices[v] - centroid).squaredNorm() > (mesh.vertices[best] - centroid).squaredNorm()) best = v;
+  return best;
 }
+
+// Farthest-point sampling (Euclidean) from seeds: `distance` holds, per
+// vertex, the squared distance to the nearest of the seeds taken so far.
+struct Spread {
+  std::vector<double> distance;
+  std::size_t taken = 0;  // seeds already in `distance`
+
+  // The vertex farthest from `seeds` (the first `taken` of them unchanged
+  // since the last call), -1 when every vertex is a seed.
+  int next(const TriangleMesh& mesh, const std::vector<int>& seeds) {
+    distance.resize(mesh.vertices.size(), std::numeric_limits<double>::infinity());
+    for (; taken < seeds.size(); ++taken)
+      for (std::size_t v = 0; v < distance.size(); ++v)
+        distance[v] = std::min(distance[v], (mesh.vertices[v] - mesh.vertices[seeds[taken]]).squaredNorm());
+    const auto far = std::max_element(distance.begin(), distance.end());
+    return *far > 0 ? int(far - distance.begin()) : -1;
+  }
+};
 
 // The automatic feature of restart `start`: the start-th of the vertices
 // spread by farthest-point sampling from the one farthest from the centroid.
 int spread_vertex(const TriangleMesh& mesh, int start) {
-  int chosen = farthest_from_centroid(mesh);
-  std::vector<double> distance(mesh.vertices.size(), std::numeric_limits<double>::infinity());
-  for (int k = 0; k < start; ++k) {
-    for (std::size_t v = 0; v < distance.size(); ++v)
-      distance[v] = std::min(distance[v], (mesh.vertices[v] - mesh.vertices[chosen]).squaredNorm());
-    chosen = int(std::max_element(distance.begin(), distance.end()) - distance.begin());
+  std::vector<int> seeds{farthest_from_centroid(mesh)};
+  Spread spread;
+  for (int k = 0, v = 0; k < start && (v = spread.next(mesh, seeds)) >= 0; ++k) seeds.push_back(v);
+  return seeds.back();
+}
+
+// A sphere's base needs at least kSphereBasePairs vertices (the issue's
+// minimum for genus 0): pairs added to `pairs`, the first (when there is
+// none) at A's spread vertex of restart `start`, the others farthest from
+// those on A. B's partner is one of B's extremities as farthest-point
+// sampling from B's paired vertices finds them (kBaseCandidates of them),
+// the one nearest in A's frame as fitted to the pairs so far (PathGuide,
+// which turns B onto A's principal axes while the pairs are too few to fix
+// a rotation): the plain nearest vertex put a cow's hoof on the horse's
+// belly, the legs' lengths differing more than an affine frame follows.
+void add_sphere_base_pairs(const TriangleMesh& a, const TriangleMesh& b, int start,
+                           std::vector<std::array<int, 2>>& pairs) {
+  std::vector<int> seeds_a;
+  for (const auto& p : pairs) seeds_a.push_back(p[0]);
+  Spread spread_a;
+  while (pairs.size() < kSphereBasePairs) {
+    const int next_a = pairs.empty() ? spread_vertex(a, start) : spread_a.next(a, seeds_a);
+    std::vector<Vec3> on_a, on_b;
+    std::vector<int> seeds_b;
+    for (const auto& p : pairs)
+      on_a.push_back(a.vertices[p[0]]), on_b.push_back(b.vertices[p[1]]), seeds_b.push_back(p[1]);
+    const std::size_t paired = seeds_b.size();
+    if (seeds_b.empty()) seeds_b.push_back(farthest_from_centroid(b));
+    Spread spread_b;
+    for (int v = 0; seeds_b.size() < paired + kBaseCandidates && (v = spread_b.next(b, seeds_b)) >= 0;)
+      seeds_b.push_back(v);
+    std::vector<Vec3> candidates;
+    for (std::size_t k = paired; k < seeds_b.size(); ++k) candidates.push_back(b.vertices[seeds_b[k]]);
+    if (next_a < 0 || candidates.empty()) break;
+    const PathGuide guide(on_a, on_b, a, b, /*turn=*/true);
+    pairs.push_back({next_a, seeds_b[paired + guide.nearest(a.vertices[next_a], candidates)]});
+    seeds_a.push_back(next_a);
   }
-  return chosen;
 }
 
 // Genus >= 1: the map through one consistent partition of the closed
@@ -151,23 +198,15 @@ PatchPartitions partition_pair(const TriangleMesh& a, const TriangleMesh& b, con
   // corner order flips).
   PatchPartitions made{close_holes(a, /*any_genus=*/true), close_holes(b, /*any_genus=*/true), {}, {}, 0, 0, 0};
   const ClosedMesh &closed_a = made.closed_a, &closed_b = made.closed_b;
-  if (pairs.empty() && closed_a.loops.empty()) {
+  if (result.genus == 0 && closed_a.loops.empty()) {
+    add_sphere_base_pairs(a, b, start, pairs);
+  } else if (pairs.empty() && closed_a.loops.empty()) {
     // A's vertex farthest from its centroid (or, restarting, another spread
     // vertex), and B's nearest to it with the centroids and areas matched
     // (meshes posed alike get a matching pair). Holes bring their own pairs
     // on their rims.
     const int far_a = spread_vertex(a, start);
     pairs.push_back({far_a, PathGuide({}, {}, a, b).nearest(a.vertices[far_a], b.vertices)});
-  }
-  if (result.genus == 0 && pairs.size() == 1 && closed_a.loops.empty()) {
-    // A sphere's partition grows from a path: a second pair, A's vertex
-    // farthest from the first and B's nearest to it in A's frame (B's
-    // farthest from its first if that is the first itself).
-    const Vec3 &first_a = a.vertices[pairs[0][0]], &first_b = b.vertices[pairs[0][1]];
-    const int far_a = farthest_from(a, first_a);
-    int near_b = PathGuide({first_a}, {first_b}, a, b).nearest(a.vertices[far_a], b.vertices);
-    if (near_b == pairs[0][1]) near_b = farthest_from(b, first_b);
-    pairs.push_back({far_a, near_b});
   }
   TriangleMesh b_like_a = closed_b.mesh;
   const bool turned = signed_volume(closed_a.mesh) * signed_volume(closed_b.mesh) < 0;

@@ -16,6 +16,9 @@ constexpr double kMaxAnisotropy = 4;  // an affine fit stretching more than this
 constexpr int kGuidePoints = 64;      // segments of the coarse polyline searched first
 constexpr int kClosestSamples = 1500;  // vertices of each mesh matched per round of closest points
 constexpr int kClosestRounds = 20;
+// A start turned onto the principal axes must end this much closer than the
+// unturned one (its summed squared distances times this, compared).
+constexpr double kTurnMargin = 2;
 
 // Every k-th vertex, at most about kClosestSamples of them.
 std::vector<Vec3> samples(const TriangleMesh& mesh) {
@@ -90,6 +93,27 @@ Vec3 centroid(const std::vector<Vec3>& points) {
   return c / double(std::max<size_t>(1, points.size()));
 }
 
+// A mesh's vertex centroid and the principal axes of its surface (columns,
+// longest first), from the area-weighted spread of its triangles' centroids
+// (vertex density does not pull the axes).
+struct Axes {
+  Vec3 centroid;
+  Eigen::Matrix3d axes;
+};
+
+Axes principal_axes(const TriangleMesh& mesh) {
+  Axes out{centroid(mesh.vertices), Eigen::Matrix3d::Identity()};
+  Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
+  for (const Triangle& t : mesh.triangles) {
+    const Vec3 &p = mesh.vertices[t[0]], &q = mesh.vertices[t[1]], &r = mesh.vertices[t[2]];
+    const Vec3 d = (p + q + r) / 3 - out.centroid;
+    spread += 0.5 * (q - p).cross(r - p).norm() * d * d.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(spread);
+  if (solver.info() == Eigen::Success) out.axes = solver.eigenvectors().rowwise().reverse();
+  return out;
+}
+
 // Squared, so the searches below compare without a square root per segment.
 double squared_distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
   const Vec3 d = b - a;
@@ -101,7 +125,7 @@ double squared_distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) 
 }  // namespace
 
 PathGuide::PathGuide(const std::vector<Vec3>& on_a, const std::vector<Vec3>& on_b, const TriangleMesh& a,
-                     const TriangleMesh& b) {
+                     const TriangleMesh& b, bool turn) {
   const double area_a = surface_area(a), area_b = surface_area(b);
   scale_a_ = std::sqrt(std::max(area_a, 1e-300));
   const int n = int(std::min(on_a.size(), on_b.size()));
@@ -118,16 +142,37 @@ PathGuide::PathGuide(const std::vector<Vec3>& on_a, const std::vector<Vec3>& on_
       fitted = true;
     }
   }
-  if (!fitted) {
-    const double s = std::sqrt(area_a / std::max(area_b, 1e-300));
-    transform_ = Eigen::Translation3d(centroid(a.vertices)) * Eigen::Scaling(s) *
-                 Eigen::Translation3d(-centroid(b.vertices));
+  if (fitted) {
+    align_surfaces(on_a, on_b, a, b);
+    return;
   }
-  align_surfaces(on_a, on_b, a, b);
+  // Too few pairs to fix a rotation: the centroids and areas matched, B
+  // unturned or (`turn`) turned so that its principal axes lie along A's (the
+  // four turns that do not mirror), each start refined by closest points. A turn
+  // is kept only when it ends clearly closer than the unturned start, so
+  // meshes posed alike stay as they were while the cow (along x) and the
+  // horse (along y) are turned onto each other.
+  const double s = std::sqrt(area_a / std::max(area_b, 1e-300));
+  const Axes axes_a = principal_axes(a), axes_b = principal_axes(b);
+  Eigen::Affine3d best = Eigen::Affine3d::Identity();
+  double best_distance = std::numeric_limits<double>::infinity();
+  for (int k = -1; k < (turn ? 4 : 0); ++k) {
+    Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+    if (k >= 0) {
+      Eigen::Vector3d sign(k & 1 ? -1 : 1, k & 2 ? -1 : 1, 1);
+      if ((axes_a.axes * sign.asDiagonal() * axes_b.axes.transpose()).determinant() < 0) sign.z() = -1;
+      rotation = axes_a.axes * sign.asDiagonal() * axes_b.axes.transpose();
+    }
+    transform_.linear() = s * rotation;
+    transform_.translation() = axes_a.centroid - s * rotation * axes_b.centroid;
+    const double distance = align_surfaces(on_a, on_b, a, b) * (k >= 0 ? kTurnMargin : 1);
+    if (distance < best_distance) best_distance = distance, best = transform_;
+  }
+  transform_ = best;
 }
 
-void PathGuide::align_surfaces(const std::vector<Vec3>& on_a, const std::vector<Vec3>& on_b, const TriangleMesh& a,
-                               const TriangleMesh& b) {
+double PathGuide::align_surfaces(const std::vector<Vec3>& on_a, const std::vector<Vec3>& on_b,
+                                 const TriangleMesh& a, const TriangleMesh& b) {
   const std::vector<Vec3> from_a = samples(a), from_b = samples(b);
   const int n = int(std::min(on_a.size(), on_b.size()));
   // The pairs weigh as much as all the samples together.
@@ -162,6 +207,7 @@ void PathGuide::align_surfaces(const std::vector<Vec3>& on_a, const std::vector<
     if (!fit_affine(x, y, weight, next)) break;
     transform_ = next;
   }
+  return last;
 }
 
 std::function<double(const Vec3&)> PathGuide::near(const std::vector<Vec3>& a_path) const {

@@ -5,7 +5,8 @@
 // wind differently: the patches then twist against each other. B is brought
 // into A's frame by a transform fitted to the given feature pairs (affine
 // from 4 pairs unless it stretches more than 4:1 or mirrors, else a
-// similarity from 3, else the centroids and areas), then refined by
+// similarity from 3, else the centroids and areas, on request B turned
+// onto A's principal axes when that matches clearly closer), then refined by
 // iterative closest points between the two surfaces, and a step of B's
 // search costs more the farther it lies from A's path there:
 // 1 + kPull * distance / sqrt(A's area), and 1 on A's path itself, so that
@@ -23,9 +24,13 @@ namespace cmaps {
 
 class PathGuide {
  public:
-  // Positions of the given pairs on A and on B (any count), the meshes for the fallback.
+  // Positions of the given pairs on A and on B (any count), the meshes for
+  // the fallback. `turn`: with fewer than 3 pairs, also try B turned onto A's
+  // principal axes. Only genus 0's base pairs ask for it: on genus >= 1 the
+  // first pair decides which handles the partition pairs, and turning is not
+  // measured there yet (BENCHMARKS.md).
   PathGuide(const std::vector<Vec3>& on_a, const std::vector<Vec3>& on_b, const TriangleMesh& a,
-            const TriangleMesh& b);
+            const TriangleMesh& b, bool turn = false);
 
   Vec3 to_a(const Vec3& on_b) const { return transform_ * on_b; }
 
@@ -40,7 +45,8 @@ class PathGuide {
   // to the other's nearest in A's frame), the pairs weighing as much as all
   // samples, refitted affinely while the matched distance falls: meshes posed
   // alike line up even when the pairs are few, coplanar or absent.
-  void align_surfaces(const std::vector<Vec3>& on_a, const std::vector<Vec3>& on_b, const TriangleMesh& a,
+  // Returns the summed squared distances of the matches at the fit kept.
+  double align_surfaces(const std::vector<Vec3>& on_a, const std::vector<Vec3>& on_b, const TriangleMesh& a,
                       const TriangleMesh& b);
 
   Eigen::Affine3d transform_ = Eigen::Affine3d::Identity();
