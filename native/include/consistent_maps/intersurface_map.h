@@ -61,11 +61,12 @@
 // was traced stop being walls on both meshes (as in Schreiner et al., though
 // on the full meshes, not during a progressive refinement). Continuous and
 // bijective. With zero pairs, one pair is chosen: A's vertex farthest from
-// its centroid and B's vertex nearest it with centroids and areas matched (B
-// turned onto A's principal axes when that matches clearly closer). Genus 0
-// gets at least 4 pairs: A's vertices after the first farthest from those
-// paired, each partner the one of B's 8 farthest-point extremities nearest
-// A's vertex in A's frame.
+// its centroid and B's vertex nearest it with centroids and areas matched.
+// Genus 0 gets at least 4 pairs: A's vertices farthest from those paired
+// (the first as above), each partner the one of B's 8 farthest-point
+// extremities nearest A's vertex in A's frame, B turned onto A's principal
+// axes while the pairs are too few to fix a rotation, if that matches
+// clearly closer.
 // Holes (thesis 5.4, boundaries): each is closed by a fan around a temporary
 // centre, holes are paired (by pairs on their rims, else by nearest centres
 // in A's frame), each rim pair gets at least 3 corresponding features, and
@@ -150,7 +151,8 @@ struct IntersurfaceOptions {
   int restarts = 1;
   // The direct map of a pair given no features and without holes: its
   // automatic first pair (A's k-th vertex of a farthest-point spread from
-  // the one farthest from its centroid, B's nearest in A's frame) decides
+  // the one farthest from its centroid, B's nearest in A's frame; for genus
+  // 0, B's extremity nearest it, as described above) decides
   // how the partition pairs the surfaces' handles and parts, and between
   // different shapes the maps differ widely (kitten - rocker-arm, four
   // starts: summed medians 22.0, 20.2, 14.3, 32.4) but rank alike before the
