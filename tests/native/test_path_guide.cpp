@@ -1,8 +1,8 @@
 // The transform that brings B into A's frame for the guided partition
 // (intersurface/path_guide.h): exact when the pairs are related by an affine
 // map or a similarity, the centroids and areas without pairs (on request B
-// turned onto A's principal axes when that matches clearly closer), and the
-// step factor 1 on A's path itself.
+// turned onto A's principal axes when that matches clearly closer, meshes
+// posed alike left unturned), and the step factor 1 on A's path itself.
 #include <gtest/gtest.h>
 
 #include "consistent_maps/mesh_io.h"
@@ -77,6 +77,23 @@ TEST(PathGuide, TurnsBOntoAsPrincipalAxesWithoutPairs) {
     for (size_t i = 0; i < a.vertices.size(); ++i)
       worst = std::max(worst, (guide.to_a(b.vertices[i]) - a.vertices[i]).norm());
     EXPECT_LT(worst, 1e-3 * diagonal) << pairs << " pairs";
+  }
+}
+
+// Meshes posed alike (poses of one cactus, expressions of one face, with
+// shared vertex order) keep the unturned start: turning is on offer, refused,
+// and every vertex stays near its own copy.
+TEST(PathGuide, KeepsMeshesPosedAlikeUnturned) {
+  for (const auto& [name_a, name_b] : std::vector<std::pair<std::string, std::string>>{
+           {"sets/cactus/cactus0.ply", "sets/cactus/cactus3.ply"}, {"sets/faces/neutral.ply", "sets/faces/surprise.ply"}}) {
+    const TriangleMesh a = read_mesh(test::shared_mesh(name_a)), b = read_mesh(test::shared_mesh(name_b));
+    const PathGuide unturned({}, {}, a, b), offered({}, {}, a, b, /*turn=*/true);
+    double mean = 0;
+    for (size_t i = 0; i < a.vertices.size(); ++i) {
+      EXPECT_EQ(offered.to_a(b.vertices[i]), unturned.to_a(b.vertices[i])) << name_b << " vertex " << i;
+      mean += (offered.to_a(b.vertices[i]) - a.vertices[i]).norm();
+    }
+    EXPECT_LT(mean / double(a.vertices.size()), 0.03 * test::diagonal(a)) << name_b;
   }
 }
 

@@ -93,25 +93,19 @@ Vec3 centroid(const std::vector<Vec3>& points) {
   return c / double(std::max<size_t>(1, points.size()));
 }
 
-// A mesh's vertex centroid and the principal axes of its surface (columns,
-// longest first), from the area-weighted spread of its triangles' centroids
-// (vertex density does not pull the axes).
-struct Axes {
-  Vec3 centroid;
-  Eigen::Matrix3d axes;
-};
-
-Axes principal_axes(const TriangleMesh& mesh) {
-  Axes out{centroid(mesh.vertices), Eigen::Matrix3d::Identity()};
+// The principal axes of a mesh's surface about `center` (columns, longest
+// first), from the area-weighted spread of its triangles' centroids (vertex
+// density does not pull the axes).
+Eigen::Matrix3d principal_axes(const TriangleMesh& mesh, const Vec3& center) {
   Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
   for (const Triangle& t : mesh.triangles) {
     const Vec3 &p = mesh.vertices[t[0]], &q = mesh.vertices[t[1]], &r = mesh.vertices[t[2]];
-    const Vec3 d = (p + q + r) / 3 - out.centroid;
+    const Vec3 d = (p + q + r) / 3 - center;
     spread += 0.5 * (q - p).cross(r - p).norm() * d * d.transpose();
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(spread);
-  if (solver.info() == Eigen::Success) out.axes = solver.eigenvectors().rowwise().reverse();
-  return out;
+  if (solver.info() != Eigen::Success) return Eigen::Matrix3d::Identity();
+  return solver.eigenvectors().rowwise().reverse();
 }
 
 // Squared, so the searches below compare without a square root per segment.
@@ -153,18 +147,20 @@ PathGuide::PathGuide(const std::vector<Vec3>& on_a, const std::vector<Vec3>& on_
   // meshes posed alike stay as they were while the cow (along x) and the
   // horse (along y) are turned onto each other.
   const double s = std::sqrt(area_a / std::max(area_b, 1e-300));
-  const Axes axes_a = principal_axes(a), axes_b = principal_axes(b);
+  const Vec3 centroid_a = centroid(a.vertices), centroid_b = centroid(b.vertices);
+  Eigen::Matrix3d axes_a = Eigen::Matrix3d::Identity(), axes_b = axes_a;
+  if (turn) axes_a = principal_axes(a, centroid_a), axes_b = principal_axes(b, centroid_b);
   Eigen::Affine3d best = Eigen::Affine3d::Identity();
   double best_distance = std::numeric_limits<double>::infinity();
   for (int k = -1; k < (turn ? 4 : 0); ++k) {
     Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
     if (k >= 0) {
       Eigen::Vector3d sign(k & 1 ? -1 : 1, k & 2 ? -1 : 1, 1);
-      if ((axes_a.axes * sign.asDiagonal() * axes_b.axes.transpose()).determinant() < 0) sign.z() = -1;
-      rotation = axes_a.axes * sign.asDiagonal() * axes_b.axes.transpose();
+      if ((axes_a * sign.asDiagonal() * axes_b.transpose()).determinant() < 0) sign.z() = -1;
+      rotation = axes_a * sign.asDiagonal() * axes_b.transpose();
     }
     transform_.linear() = s * rotation;
-    transform_.translation() = axes_a.centroid - s * rotation * axes_b.centroid;
+    transform_.translation() = centroid_a - s * rotation * centroid_b;
     const double distance = align_surfaces(on_a, on_b, a, b) * (k >= 0 ? kTurnMargin : 1);
     if (distance < best_distance) best_distance = distance, best = transform_;
   }
