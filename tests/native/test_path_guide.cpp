@@ -62,7 +62,8 @@ TEST(PathGuide, SimilarityFromThreePairsAndCentroidsWithout) {
 
 // Without pairs a mesh turned a quarter about one axis and tilted (the cow
 // along y, as the horse lies, against itself along x) is turned back: every
-// vertex lands on its own copy. Unturned, the cow stays crosswise.
+// vertex lands on its own copy. Unturned, the cow stayed crosswise (worst
+// vertex 0.95 and 0.77 of the diagonal away with 0 and 1 pairs).
 TEST(PathGuide, TurnsBOntoAsPrincipalAxesWithoutPairs) {
   const TriangleMesh a = read_mesh(test::shared_mesh("genus0/cow.off"));
   const Eigen::Affine3d to_b = Eigen::Translation3d(5, -2, 1) * Eigen::AngleAxisd(0.2, Vec3::UnitX()) *
@@ -72,7 +73,7 @@ TEST(PathGuide, TurnsBOntoAsPrincipalAxesWithoutPairs) {
   for (const int pairs : {0, 1}) {
     const std::vector<Vec3> on_a(a.vertices.begin(), a.vertices.begin() + pairs),
         on_b(b.vertices.begin(), b.vertices.begin() + pairs);
-    const PathGuide guide(on_a, on_b, a, b, /*turn=*/true);
+    const PathGuide guide(on_a, on_b, a, b);
     double worst = 0;
     for (size_t i = 0; i < a.vertices.size(); ++i)
       worst = std::max(worst, (guide.to_a(b.vertices[i]) - a.vertices[i]).norm());
@@ -81,19 +82,17 @@ TEST(PathGuide, TurnsBOntoAsPrincipalAxesWithoutPairs) {
 }
 
 // Meshes posed alike (poses of one cactus, expressions of one face, with
-// shared vertex order) keep the unturned start: turning is on offer, refused,
-// and every vertex stays near its own copy.
+// shared vertex order) keep the unturned start: every vertex stays near its
+// own copy (1.9 and 1.7 % of the diagonal on average; a quarter turn would
+// put the cactus's arms on its trunk).
 TEST(PathGuide, KeepsMeshesPosedAlikeUnturned) {
   for (const auto& [name_a, name_b] : std::vector<std::pair<std::string, std::string>>{
            {"sets/cactus/cactus0.ply", "sets/cactus/cactus3.ply"}, {"sets/faces/neutral.ply", "sets/faces/surprise.ply"}}) {
     const TriangleMesh a = read_mesh(test::shared_mesh(name_a)), b = read_mesh(test::shared_mesh(name_b));
-    const PathGuide unturned({}, {}, a, b), offered({}, {}, a, b, /*turn=*/true);
+    const PathGuide guide({}, {}, a, b);
     double mean = 0;
-    for (size_t i = 0; i < a.vertices.size(); ++i) {
-      EXPECT_EQ(offered.to_a(b.vertices[i]), unturned.to_a(b.vertices[i])) << name_b << " vertex " << i;
-      mean += (offered.to_a(b.vertices[i]) - a.vertices[i]).norm();
-    }
-    EXPECT_LT(mean / double(a.vertices.size()), 0.03 * test::diagonal(a)) << name_b;
+    for (size_t i = 0; i < a.vertices.size(); ++i) mean += (guide.to_a(b.vertices[i]) - a.vertices[i]).norm();
+    EXPECT_LT(mean / double(a.vertices.size()), 0.025 * test::diagonal(a)) << name_b;
   }
 }
 

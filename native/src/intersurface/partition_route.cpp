@@ -92,7 +92,7 @@ void add_sphere_base_pairs(const TriangleMesh& a, const TriangleMesh& b, int sta
     std::vector<Vec3> candidates;
     for (std::size_t k = paired; k < seeds_b.size(); ++k) candidates.push_back(b.vertices[seeds_b[k]]);
     if (next_a < 0 || candidates.empty()) break;
-    const PathGuide guide(on_a, on_b, a, b, /*turn=*/true);
+    const PathGuide guide(on_a, on_b, a, b);
     pairs.push_back({next_a, seeds_b[paired + guide.nearest(a.vertices[next_a], candidates)]});
     seeds_a.push_back(next_a);
   }

@@ -119,7 +119,7 @@ double squared_distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) 
 }  // namespace
 
 PathGuide::PathGuide(const std::vector<Vec3>& on_a, const std::vector<Vec3>& on_b, const TriangleMesh& a,
-                     const TriangleMesh& b, bool turn) {
+                     const TriangleMesh& b) {
   const double area_a = surface_area(a), area_b = surface_area(b);
   scale_a_ = std::sqrt(std::max(area_a, 1e-300));
   const int n = int(std::min(on_a.size(), on_b.size()));
@@ -141,18 +141,18 @@ PathGuide::PathGuide(const std::vector<Vec3>& on_a, const std::vector<Vec3>& on_
     return;
   }
   // Too few pairs to fix a rotation: the centroids and areas matched, B
-  // unturned or (`turn`) turned so that its principal axes lie along A's (the
-  // four turns that do not mirror), each start refined by closest points. A turn
+  // unturned or turned so that its principal axes lie along A's (the four
+  // turns that do not mirror), each start refined by closest points. A turn
   // is kept only when it ends clearly closer than the unturned start, so
   // meshes posed alike stay as they were while the cow (along x) and the
-  // horse (along y) are turned onto each other.
+  // horse (along y), or a mesh and its copy stood up from y-up to z-up, are
+  // turned onto each other.
   const double s = std::sqrt(area_a / std::max(area_b, 1e-300));
   const Vec3 centroid_a = centroid(a.vertices), centroid_b = centroid(b.vertices);
-  Eigen::Matrix3d axes_a = Eigen::Matrix3d::Identity(), axes_b = axes_a;
-  if (turn) axes_a = principal_axes(a, centroid_a), axes_b = principal_axes(b, centroid_b);
+  const Eigen::Matrix3d axes_a = principal_axes(a, centroid_a), axes_b = principal_axes(b, centroid_b);
   Eigen::Affine3d best = Eigen::Affine3d::Identity();
   double best_distance = std::numeric_limits<double>::infinity();
-  for (int k = -1; k < (turn ? 4 : 0); ++k) {
+  for (int k = -1; k < 4; ++k) {
     Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
     if (k >= 0) {
       Eigen::Vector3d sign(k & 1 ? -1 : 1, k & 2 ? -1 : 1, 1);
