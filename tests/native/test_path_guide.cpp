@@ -1,8 +1,8 @@
 // The transform that brings B into A's frame for the guided partition
 // (intersurface/path_guide.h): exact when the pairs are related by an affine
-// map or a similarity, the centroids and areas without pairs (on request B
-// turned onto A's principal axes when that matches clearly closer, meshes
-// posed alike left unturned), and the step factor 1 on A's path itself.
+// map or a similarity, the centroids and areas without pairs (B turned onto
+// A's principal axes when that matches clearly closer, meshes posed alike
+// left unturned), and the step factor 1 on A's path itself.
 #include <gtest/gtest.h>
 
 #include "consistent_maps/mesh_io.h"
@@ -87,7 +87,8 @@ TEST(PathGuide, TurnsBOntoAsPrincipalAxesWithoutPairs) {
 // put the cactus's arms on its trunk).
 TEST(PathGuide, KeepsMeshesPosedAlikeUnturned) {
   for (const auto& [name_a, name_b] : std::vector<std::pair<std::string, std::string>>{
-           {"sets/cactus/cactus0.ply", "sets/cactus/cactus3.ply"}, {"sets/faces/neutral.ply", "sets/faces/surprise.ply"}}) {
+           {"sets/cactus/cactus0.ply", "sets/cactus/cactus3.ply"},
+           {"sets/faces/neutral.ply", "sets/faces/surprise.ply"}}) {
     const TriangleMesh a = read_mesh(test::shared_mesh(name_a)), b = read_mesh(test::shared_mesh(name_b));
     const PathGuide guide({}, {}, a, b);
     double mean = 0;
