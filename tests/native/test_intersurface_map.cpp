@@ -504,6 +504,36 @@ TEST(IntersurfaceMap, ZeroFeaturesGetAValidDirectMap) {
   EXPECT_TRUE(std::isfinite(r.distortion_a_to_b.median_symmetric_dirichlet));
 }
 
+// The pairs added to a cow and a horse given none land on like parts: B's
+// candidates are its extremities along the surface (the horse's hooves and
+// nose, which straight-line farthest points missed for its ears and belly).
+// Landmarks from bench/features/animals.json; checked on each added pair whose
+// cow vertex lies at one of them.
+TEST(IntersurfaceMap, PairsAddedToACowAndAHorseMatchTheirParts) {
+  const TriangleMesh cow = read_mesh(shared_mesh("genus0/cow.off"));
+  const TriangleMesh horse = read_mesh(shared_mesh("large/horse.ply"));
+  struct Landmark {
+    const char* name;
+    int cow, horse;
+  };
+  const Landmark landmarks[] = {{"nose", 890, 37578},       {"forefoot_l", 2401, 26378}, {"forefoot_r", 2478, 27704},
+                                {"hindfoot_l", 2440, 30120}, {"hindfoot_r", 2517, 31836}};
+  IntersurfaceOptions options;
+  options.method = IntersurfaceMethod::partition;
+  options.starts = 1;
+  options.optimize_rounds = 0;  // the pairs come from the partition
+  const IntersurfaceResult r = intersurface_map(cow, horse, {}, options);
+  int checked = 0;
+  for (const FeaturePair& p : r.features)
+    for (const Landmark& l : landmarks)
+      if ((cow.vertices[p.a] - cow.vertices[l.cow]).norm() < 0.03 * diagonal(cow)) {
+        ++checked;
+        EXPECT_LT((horse.vertices[p.b] - horse.vertices[l.horse]).norm(), 0.05 * diagonal(horse)) << l.name;
+      }
+  // Measured: nose, right hind foot and left fore foot (the fourth pair is the cow's tail tip).
+  EXPECT_GE(checked, 3);
+}
+
 TEST(IntersurfaceMap, SphereMethodIsRefusedForGenusOne) {
   const TriangleMesh torus = read_mesh(shared_mesh("higher-genus/torus.obj"));
   IntersurfaceOptions options;

@@ -11,6 +11,7 @@
 #include "consistent_maps/mesh_check.h"
 #include "intersurface/consistent_partition.h"
 #include "intersurface/cross_patch_optimization.h"
+#include "intersurface/farthest_points.h"
 #include "intersurface/hole_rims.h"
 #include "intersurface/map_choice.h"
 #include "intersurface/patch_balance.h"
@@ -26,44 +27,6 @@ namespace {
 constexpr std::size_t kSphereBasePairs = 4;
 constexpr std::size_t kBaseCandidates = 8;  // extremities of B a new pair may take
 
-// The vertex farthest from the centroid: the automatic feature of a mesh.
-int farthest_from_centroid(const TriangleMesh& mesh) {
-  Vec3 centroid = Vec3::Zero();
-  for (const Vec3& v : mesh.vertices) centroid += v;
-  centroid /= double(mesh.vertices.size());
-  int best = 0;
-  for (int v = 1; v < int(mesh.vertices.size()); ++v)
-    if ((mesh.vertices[v] - centroid).squaredNorm() > (mesh.vertices[best] - centroid).squaredNorm()) best = v;
-  return best;
-}
-
-// Farthest-point sampling (Euclidean) from seeds: `distance` holds, per
-// vertex, the squared distance to the nearest of the seeds taken so far.
-struct Spread {
-  std::vector<double> distance;
-  std::size_t taken = 0;  // seeds already in `distance`
-
-  // The vertex farthest from `seeds` (the first `taken` of them unchanged
-  // since the last call), -1 when every vertex is a seed.
-  int next(const TriangleMesh& mesh, const std::vector<int>& seeds) {
-    distance.resize(mesh.vertices.size(), std::numeric_limits<double>::infinity());
-    for (; taken < seeds.size(); ++taken)
-      for (std::size_t v = 0; v < distance.size(); ++v)
-        distance[v] = std::min(distance[v], (mesh.vertices[v] - mesh.vertices[seeds[taken]]).squaredNorm());
-    const auto far = std::max_element(distance.begin(), distance.end());
-    return *far > 0 ? int(far - distance.begin()) : -1;
-  }
-};
-
-// The automatic feature of restart `start`: the start-th of the vertices
-// spread by farthest-point sampling from the one farthest from the centroid.
-int spread_vertex(const TriangleMesh& mesh, int start) {
-  std::vector<int> seeds{farthest_from_centroid(mesh)};
-  Spread spread;
-  for (int k = 0, v = 0; k < start && (v = spread.next(mesh, seeds)) >= 0; ++k) seeds.push_back(v);
-  return seeds.back();
-}
-
 // A sphere's base needs at least kSphereBasePairs vertices (the issue's
 // minimum for genus 0): pairs added to `pairs`, the first (when there is
 // none) at A's spread vertex of restart `start`, the others farthest from
@@ -77,17 +40,17 @@ void add_sphere_base_pairs(const TriangleMesh& a, const TriangleMesh& b, int sta
                            std::vector<std::array<int, 2>>& pairs) {
   std::vector<int> seeds_a;
   for (const auto& p : pairs) seeds_a.push_back(p[0]);
-  Spread spread_a;
+  Spread spread_a(a, /*along_edges=*/true);
   while (pairs.size() < kSphereBasePairs) {
-    const int next_a = pairs.empty() ? spread_vertex(a, start) : spread_a.next(a, seeds_a);
+    const int next_a = pairs.empty() ? spread_vertex(a, start) : spread_a.next(seeds_a);
     std::vector<Vec3> on_a, on_b;
     std::vector<int> seeds_b;
     for (const auto& p : pairs)
       on_a.push_back(a.vertices[p[0]]), on_b.push_back(b.vertices[p[1]]), seeds_b.push_back(p[1]);
     const std::size_t paired = seeds_b.size();
     if (seeds_b.empty()) seeds_b.push_back(farthest_from_centroid(b));
-    Spread spread_b;
-    for (int v = 0; seeds_b.size() < paired + kBaseCandidates && (v = spread_b.next(b, seeds_b)) >= 0;)
+    Spread spread_b(b, /*along_edges=*/true);
+    for (int v = 0; seeds_b.size() < paired + kBaseCandidates && (v = spread_b.next(seeds_b)) >= 0;)
       seeds_b.push_back(v);
     std::vector<Vec3> candidates;
     for (std::size_t k = paired; k < seeds_b.size(); ++k) candidates.push_back(b.vertices[seeds_b[k]]);
