@@ -67,8 +67,10 @@ struct MovingChord {
     const std::array<Image, 3> image = images(Vec2::Zero());
     const Image* corner[3] = {&image[0], &image[1], &image[2]};
     const Jacobian* moving[3] = {&jacobian[0], nullptr, &jacobian[2]};
+    ChordTriangle worked_out;
+    triangle_energy(shape, corner, nullptr, &worked_out);
     PointGradient g;
-    add_chord_gradient(shape, corner, moving, weight, g);
+    add_chord_gradient(shape, worked_out, moving, weight, g);
     return g;
   }
 };

@@ -28,15 +28,6 @@ constexpr double kFoldPenalty = 1e6;  // added energy density of an image triang
 // compressed most, e.g. between unrelated feature pairs).
 constexpr int kMaxRemapped = 256;
 
-// The entry of target vertex w in `sorted` (sorted by vertex), or nullptr. A
-// move lists the target vertices it re-maps so: a ring can hold hundreds, and
-// each of their triangles looks its corners up.
-template <class T>
-const T* find_remapped(const std::vector<std::pair<int, T>>& sorted, int w) {
-  const auto it = std::lower_bound(sorted.begin(), sorted.end(), w, [](const auto& x, int v) { return x.first < v; });
-  return it != sorted.end() && it->first == w ? &it->second : nullptr;
-}
-
 // The positions of the corners of `side`'s triangle f.
 inline std::array<Vec3, 3> corner_positions(const PartitionSide& side, int f) {
   const Triangle& t = side.mesh.triangles()[f];
@@ -55,18 +46,30 @@ inline Image image_in(const PartitionSide& side, int face, const std::array<doub
   return {scale * (w[0] * a + w[1] * b + w[2] * c), (b - a).cross(c - a).normalized()};
 }
 
+// What triangle_energy works out on its way, for its derivative (map_gradient.h).
+struct ChordTriangle {
+  Vec3 q[3];          // the corners' images
+  Vec3 nq, normal;    // (q1 - q0) x (q2 - q0); the surface's normal there, not normalized
+  double aq = 0, dirichlet = 0;
+  bool finite = false;  // false where the energy is 0 (no source area) or inf
+};
+
 // Area times symmetric Dirichlet density of the linear map from a triangle
 // onto the chord triangle of its corners' images, plus kFoldPenalty times
 // the area when that faces against the surface (then *folded, if given, is
-// raised by its area projected on the surface); inf when degenerate.
-inline double triangle_energy(const SourceTriangle& s, const Image* image[3], double* folded = nullptr) {
+// raised by its area projected on the surface); inf when degenerate. `chord`,
+// if given, gets what was worked out.
+inline double triangle_energy(const SourceTriangle& s, const Image* image[3], double* folded = nullptr,
+                              ChordTriangle* chord = nullptr) {
   if (s.area <= 0) return 0;
   const Vec3 nq = (image[1]->position - image[0]->position).cross(image[2]->position - image[0]->position);
   const double aq = 0.5 * nq.norm();
   if (aq <= 1e-14 * s.area) return kChordInf;
   const Vec3 q[3] = {image[0]->position, image[1]->position, image[2]->position};
-  const double density = dirichlet_term(s, q) * (1 + (s.area / aq) * (s.area / aq));
+  const double dirichlet = dirichlet_term(s, q);
+  const double density = dirichlet * (1 + (s.area / aq) * (s.area / aq));
   const Vec3 normal = surface_normal(image);
+  if (chord) *chord = {{q[0], q[1], q[2]}, nq, normal, aq, dirichlet, true};
   if (!(nq.dot(normal) < 0)) return s.area * density;
   if (folded) *folded -= 0.5 * nq.dot(normal.normalized());
   return s.area * (density + kFoldPenalty);

@@ -43,7 +43,7 @@ struct CrossPatchMap::Move {
   int home = -1;
   Vec2 point = Vec2::Zero();
   Image image;
-  std::vector<std::pair<int, Rehost>> rehosted;  // per vertex of B (sorted)
+  std::vector<std::pair<int, Rehost>> rehosted;  // per vertex of B, in Ring::hosted's order
   double energy = kChordInf;
   double folded = 0;  // the folded chords' area, projected on the surface there
 };
@@ -155,6 +155,8 @@ struct CrossPatchMap::Ring {
   std::vector<Vec2> base_points;
   std::vector<std::pair<int, Vec2>> hosted;  // vertex of B (sorted), its point
   std::vector<int> touched, touched_split;   // B's triangles and split chords at hosted vertices (sorted)
+  // Per corner of each of those: its index in `hosted` (a move re-hosts them in that order), -1 if not there.
+  std::vector<std::array<int, 3>> touched_hosted, touched_split_hosted;
   Vec2 low, high;                            // the box around v's neighbours
   double length = 0;                         // the mean distance from v to its neighbours
 };
@@ -205,6 +207,17 @@ bool CrossPatchMap::gather_ring(int v, Ring& ring) const {
   std::sort(ring.hosted.begin(), ring.hosted.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
   sort_unique(ring.touched);
   sort_unique(ring.touched_split);
+  const auto hosted_slots = [&](const Triangle& tri) {
+    std::array<int, 3> slots;
+    for (int k = 0; k < 3; ++k) {
+      const auto it = std::lower_bound(ring.hosted.begin(), ring.hosted.end(), tri[k],
+                                       [](const auto& x, int w) { return x.first < w; });
+      slots[k] = it != ring.hosted.end() && it->first == tri[k] ? int(it - ring.hosted.begin()) : -1;
+    }
+    return slots;
+  };
+  for (int g : ring.touched) ring.touched_hosted.push_back(hosted_slots(b_.mesh.triangles()[g]));
+  for (int s : ring.touched_split) ring.touched_split_hosted.push_back(hosted_slots(split_b_.corners[s]));
   return true;
 }
 
@@ -256,8 +269,9 @@ CrossPatchMap::Move CrossPatchMap::trial(int v, const Vec2& q, const Ring& ring,
   // One chord triangle's energy, weighted, and its derivative through the corners moving with q.
   const auto charge = [&](const SourceTriangle& shape, const Image* image[3], const Jacobian* jacobian[3],
                           double weight) {
-    e += weight * triangle_energy(shape, image, &m.folded);
-    if (gradient) add_chord_gradient(shape, image, jacobian, weight, *gradient);
+    ChordTriangle chord;
+    e += weight * triangle_energy(shape, image, &m.folded, gradient ? &chord : nullptr);
+    if (gradient) add_chord_gradient(shape, chord, jacobian, weight, *gradient);
   };
   // A triangle of A with v's image after the move.
   const auto forward = [&](const Triangle& tri, const SourceTriangle& shape) {
@@ -269,21 +283,27 @@ CrossPatchMap::Move CrossPatchMap::trial(int v, const Vec2& q, const Ring& ring,
     }
     charge(shape, image, jacobian, 1);
   };
-  // A triangle of B with its corners' images after the move.
-  const auto back = [&](const Triangle& tri, const SourceTriangle& shape) {
+  // A triangle of B with its corners' images after the move (`hosted`: see Ring).
+  const auto back = [&](const Triangle& tri, const std::array<int, 3>& hosted, const SourceTriangle& shape) {
     const Image* image[3];
     const Jacobian* jacobian[3];
     for (int k = 0; k < 3; ++k) {
-      const Move::Rehost* rehost = find_remapped(m.rehosted, tri[k]);
+      const Move::Rehost* rehost = hosted[k] >= 0 ? &m.rehosted[hosted[k]].second : nullptr;
       image[k] = rehost ? &rehost->back : &back_image_[tri[k]];
       jacobian[k] = rehost ? &rehost->jacobian : nullptr;
     }
     charge(shape, image, jacobian, scale_ * scale_);
   };
   for (int f : faces) forward(a_.mesh.triangles()[f], shape_a_[f]);
-  for (int g : ring.touched) back(b_.mesh.triangles()[g], shape_b_[g]);
+  for (std::size_t i = 0; i < ring.touched.size(); ++i) {
+    const int g = ring.touched[i];
+    back(b_.mesh.triangles()[g], ring.touched_hosted[i], shape_b_[g]);
+  }
   for (int s : split_a_.of_vertex[v]) forward(split_a_.corners[s], split_a_.shape[s]);
-  for (int s : ring.touched_split) back(split_b_.corners[s], split_b_.shape[s]);
+  for (std::size_t i = 0; i < ring.touched_split.size(); ++i) {
+    const int s = ring.touched_split[i];
+    back(split_b_.corners[s], ring.touched_split_hosted[i], split_b_.shape[s]);
+  }
   m.energy = e;
   return m;
 }

@@ -23,7 +23,8 @@ Spread::Spread(const TriangleMesh& mesh, bool along_edges)
   if (!along_edges) return;
   neighbours_.resize(mesh.vertices.size());
   for (const Triangle& t : mesh.triangles)
-    for (int k = 0; k < 3; ++k) neighbours_[t[k]].push_back(t[(k + 1) % 3]), neighbours_[t[(k + 1) % 3]].push_back(t[k]);
+    for (int k = 0; k < 3; ++k)
+      neighbours_[t[k]].push_back(t[(k + 1) % 3]), neighbours_[t[(k + 1) % 3]].push_back(t[k]);
 }
 
 void Spread::reach_from(int seed) {

@@ -21,17 +21,15 @@ struct PointGradient {
 
 // Adds triangle_energy(s, image), times `weight`, and the folded area it
 // counts, differentiated through the corners whose image moves with the
-// point (jacobian[k] not null). Nothing where the energy is infinite.
-inline void add_chord_gradient(const SourceTriangle& s, const Image* image[3], const Jacobian* jacobian[3],
+// point (jacobian[k] not null), from what triangle_energy worked out
+// (`chord`). Nothing where the energy is 0 or infinite.
+inline void add_chord_gradient(const SourceTriangle& s, const ChordTriangle& chord, const Jacobian* jacobian[3],
                                double weight, PointGradient& gradient) {
-  if (s.area <= 0) return;
-  const Vec3 q[3] = {image[0]->position, image[1]->position, image[2]->position};
-  const Vec3 nq = (q[1] - q[0]).cross(q[2] - q[0]);
-  const double aq = 0.5 * nq.norm();
-  if (aq <= 1e-14 * s.area) return;
-  const double dirichlet = dirichlet_term(s, q), ratio = (s.area / aq) * (s.area / aq);
-  const Vec3 unit_normal = nq / (2 * aq), surface = surface_normal(image).normalized();
-  const bool fold = nq.dot(surface) < 0;
+  if (!chord.finite) return;
+  const Vec3(&q)[3] = chord.q;
+  const double aq = chord.aq, dirichlet = chord.dirichlet, ratio = (s.area / aq) * (s.area / aq);
+  const Vec3 unit_normal = chord.nq / (2 * aq), surface = chord.normal.normalized();
+  const bool fold = chord.nq.dot(surface) < 0;
   for (int k = 0; k < 3; ++k) {
     if (!jacobian[k]) continue;
     const Vec3 &a = q[(k + 1) % 3], &b = q[(k + 2) % 3];

@@ -89,7 +89,7 @@ double PatchEnergy::total(double& area) const {
     if (std::isfinite(fe)) e += fe, area += shape_[f].area;
   }
   for (int g = 0; g < int(back_triangle_.size()); ++g) {
-    const double ge = target_energy(g, {});
+    const double ge = target_energy(g, {-1, -1, -1}, {});
     if (std::isfinite(ge)) e += scale_ * scale_ * ge;
   }
   return e;
@@ -117,6 +117,13 @@ PatchEnergy::Hosted PatchEnergy::hosted(int v) const {
   std::sort(h.vertices.begin(), h.vertices.end());
   std::sort(h.triangles.begin(), h.triangles.end());
   h.triangles.erase(std::unique(h.triangles.begin(), h.triangles.end()), h.triangles.end());
+  for (int g : h.triangles) {
+    std::array<int, 3>& slots = h.slots.emplace_back();
+    for (int k = 0; k < 3; ++k) {
+      const auto it = std::lower_bound(h.vertices.begin(), h.vertices.end(), back_triangle_[g][k]);
+      slots[k] = it != h.vertices.end() && *it == back_triangle_[g][k] ? int(it - h.vertices.begin()) : -1;
+    }
+  }
   return h;
 }
 
@@ -155,7 +162,8 @@ PatchEnergy::Move PatchEnergy::trial(int v, const Vec2& p, const Hosted& inside,
     });
   double e = 0;
   for (int f : faces) e += source_energy(f, i, &m.image, &moved, gradient);
-  for (int g : inside.triangles) e += scale_ * scale_ * target_energy(g, m.remapped, gradient);
+  for (std::size_t k = 0; k < inside.triangles.size(); ++k)
+    e += scale_ * scale_ * target_energy(inside.triangles[k], inside.slots[k], m.remapped, gradient);
   m.energy = e;
   return m;
 }
@@ -219,21 +227,25 @@ double PatchEnergy::source_energy(int f, int i, const Image* q, const Jacobian* 
     image[k] = triangle_[f][k] == i ? q : &image_[triangle_[f][k]];
     jacobian[k] = triangle_[f][k] == i ? moved : nullptr;
   }
-  if (gradient) add_chord_gradient(shape_[f], image, jacobian, 1, *gradient);
-  return triangle_energy(shape_[f], image);
+  ChordTriangle chord;
+  const double e = triangle_energy(shape_[f], image, nullptr, gradient ? &chord : nullptr);
+  if (gradient) add_chord_gradient(shape_[f], chord, jacobian, 1, *gradient);
+  return e;
 }
 
-double PatchEnergy::target_energy(int g, const std::vector<std::pair<int, Remap>>& remapped,
-                                  PointGradient* gradient) const {
+double PatchEnergy::target_energy(int g, const std::array<int, 3>& slots,
+                                  const std::vector<std::pair<int, Remap>>& remapped, PointGradient* gradient) const {
   const Image* image[3];
   const Jacobian* jacobian[3];
   for (int k = 0; k < 3; ++k) {
-    const Remap* remap = find_remapped(remapped, back_triangle_[g][k]);
+    const Remap* remap = slots[k] >= 0 ? &remapped[slots[k]].second : nullptr;
     image[k] = remap ? &remap->image : &back_image_[back_triangle_[g][k]];
     jacobian[k] = remap ? &remap->jacobian : nullptr;
   }
-  if (gradient) add_chord_gradient(back_shape_[g], image, jacobian, scale_ * scale_, *gradient);
-  return triangle_energy(back_shape_[g], image);
+  ChordTriangle chord;
+  const double e = triangle_energy(back_shape_[g], image, nullptr, gradient ? &chord : nullptr);
+  if (gradient) add_chord_gradient(back_shape_[g], chord, jacobian, scale_ * scale_, *gradient);
+  return e;
 }
 
 double PatchEnergy::signed_area(int f, int i, const Vec2& p) const {

@@ -44,6 +44,7 @@ class PatchEnergy {
   // it, and the mean distance from it to its ring's other corners.
   struct Hosted {
     std::vector<int> vertices, triangles;
+    std::vector<std::array<int, 3>> slots;  // per triangle: each corner's index in `vertices`, -1 if not there
     double length = 0;
   };
   Hosted hosted(int v) const;
@@ -57,7 +58,7 @@ class PatchEnergy {
   struct Move {
     Vec2 point;
     Image image;
-    std::vector<std::pair<int, Remap>> remapped;  // per local target vertex (sorted)
+    std::vector<std::pair<int, Remap>> remapped;  // per local target vertex, in Hosted::vertices' order
     double energy = kChordInf;
   };
 
@@ -87,9 +88,10 @@ class PatchEnergy {
   // when i < 0); with `gradient`, its derivative added, q moving by `moved`.
   double source_energy(int f, int i, const Image* q, const Jacobian* moved = nullptr,
                        PointGradient* gradient = nullptr) const;
-  // Local target triangle g's energy with the re-mapped images; with
-  // `gradient`, its derivative (weighted as the trial weighs it) added.
-  double target_energy(int g, const std::vector<std::pair<int, Remap>>& remapped,
+  // Local target triangle g's energy with the re-mapped images (`slots`:
+  // its corners' in `remapped`, as Hosted::slots); with `gradient`, its
+  // derivative (weighted as the trial weighs it) added.
+  double target_energy(int g, const std::array<int, 3>& slots, const std::vector<std::pair<int, Remap>>& remapped,
                        PointGradient* gradient = nullptr) const;
   double signed_area(int f, int i, const Vec2& p) const;
 

@@ -113,6 +113,14 @@ double MapOptimizer::move(Side& s, Side& o, int v) const {
   std::sort(inside.begin(), inside.end());
   const std::vector<int>& sampled = s.sampled_of[v];
   const std::vector<int> other_faces = o.around(o.sampled_of, inside);
+  std::vector<std::array<int, 3>> other_slots;  // per corner of other_faces: its index in `inside`, -1 if not there
+  for (int g : other_faces) {
+    std::array<int, 3>& slots = other_slots.emplace_back();
+    for (int k = 0; k < 3; ++k) {
+      const auto it = std::lower_bound(inside.begin(), inside.end(), o.sampled[g][k]);
+      slots[k] = it != inside.end() && *it == o.sampled[g][k] ? int(it - inside.begin()) : -1;
+    }
+  }
   std::vector<Image> inside_images(inside.size());
   std::vector<int> inside_faces(inside.size());
   const double to_moving = std::sqrt(o.area / s.area);
@@ -137,11 +145,13 @@ double MapOptimizer::move(Side& s, Side& o, int v) const {
     double energy = 0;
     for (int f : sampled)
       energy += s.triangle_energy(f, [&](int u) -> const Image& { return u == v ? image : s.images[u]; });
-    for (int g : other_faces)
-      energy += o.triangle_energy(g, [&](int u) -> const Image& {
-        const auto it = std::lower_bound(inside.begin(), inside.end(), u);
-        return it != inside.end() && *it == u ? inside_images[it - inside.begin()] : o.images[u];
-      });
+    for (std::size_t j = 0; j < other_faces.size(); ++j) {
+      const std::array<int, 3>& slots = other_slots[j];
+      const Triangle& t = o.sampled[other_faces[j]];
+      const Image* image[3];
+      for (int k = 0; k < 3; ++k) image[k] = slots[k] >= 0 ? &inside_images[slots[k]] : &o.images[t[k]];
+      energy += o.energy_of_images(other_faces[j], image);
+    }
     return energy;
   };
 

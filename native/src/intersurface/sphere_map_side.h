@@ -110,6 +110,10 @@ struct MapOptimizer::Side {
   double triangle_energy(int f, const ImageOf& image_of) const {
     const Triangle& t = sampled[f];
     const Image* const image[3] = {&image_of(t[0]), &image_of(t[1]), &image_of(t[2])};
+    return energy_of_images(f, image);
+  }
+  // The same with its corners' images given.
+  double energy_of_images(int f, const Image* const (&image)[3]) const {
     const Vec3 q[3] = {image[0]->position, image[1]->position, image[2]->position};
     const SourceTriangle& p = shapes[f];
     if (!(p.area > 0)) return 0;
