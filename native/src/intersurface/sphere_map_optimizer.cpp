@@ -70,8 +70,10 @@ MapOptimizer::MapOptimizer(MapSide a, MapSide b, int threads)
 MapOptimizer::~MapOptimizer() = default;
 
 void MapOptimizer::refresh(Side& moving, Side& other) {
+  // In the pass before (if any) the moving side stayed put: its locator then serves again.
+  const std::unique_ptr<SphereLocator> on_moving =
+      on_other_ ? std::move(on_other_) : std::make_unique<SphereLocator>(moving.sphere, moving.surface.triangles);
   on_other_ = std::make_unique<SphereLocator>(other.sphere, other.surface.triangles);
-  const SphereLocator on_moving(moving.sphere, moving.surface.triangles);
   // Images of `from`'s vertices on `to`, scaled to `from`'s area.
   const auto images = [&](const Side& from, const Side& to, const std::vector<SphereLocation>& at) {
     const double scale = std::sqrt(from.area / to.area);
@@ -81,7 +83,7 @@ void MapOptimizer::refresh(Side& moving, Side& other) {
     return result;
   };
   moving.images = images(moving, other, on_other_->locate_all(moving.sphere, threads_));
-  const std::vector<SphereLocation> at = on_moving.locate_all(other.sphere, threads_);
+  const std::vector<SphereLocation> at = on_moving->locate_all(other.sphere, threads_);
   other.images = other.pending = images(other, moving, at);
   moving.holds.assign(moving.surface.triangles.size(), {});
   for (size_t w = 0; w < at.size(); ++w) moving.holds[at[w].triangle].push_back(int(w));
@@ -199,6 +201,7 @@ double MapOptimizer::move(Side& s, Side& o, int v) const {
 void MapOptimizer::optimize(int rounds, int sweeps, double tolerance, bool with_regions,
                             const std::function<bool(double)>& keep_going) {
   const int passes = 2 * std::max(0, rounds);
+  on_other_.reset();  // nothing carried over from a call cut short
   for (int pass = 0; pass < passes; ++pass) {
     Side& s = pass % 2 ? *b_ : *a_;
     Side& o = pass % 2 ? *a_ : *b_;
