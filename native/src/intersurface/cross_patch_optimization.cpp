@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 
+#include "common/corner_slots.h"
 #include "common/parallel_for.h"
 #include "consistent_maps/errors.h"
 #include "intersurface/descent_step.h"
@@ -208,13 +209,7 @@ bool CrossPatchMap::gather_ring(int v, Ring& ring) const {
   sort_unique(ring.touched);
   sort_unique(ring.touched_split);
   const auto hosted_slots = [&](const Triangle& tri) {
-    std::array<int, 3> slots;
-    for (int k = 0; k < 3; ++k) {
-      const auto it = std::lower_bound(ring.hosted.begin(), ring.hosted.end(), tri[k],
-                                       [](const auto& x, int w) { return x.first < w; });
-      slots[k] = it != ring.hosted.end() && it->first == tri[k] ? int(it - ring.hosted.begin()) : -1;
-    }
-    return slots;
+    return corner_slots(tri, ring.hosted, [](const std::pair<int, Vec2>& h) { return h.first; });
   };
   for (int g : ring.touched) ring.touched_hosted.push_back(hosted_slots(b_.mesh.triangles()[g]));
   for (int s : ring.touched_split) ring.touched_split_hosted.push_back(hosted_slots(split_b_.corners[s]));

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/corner_slots.h"
 #include "intersurface/descent_step.h"
 
 namespace cmaps {
@@ -117,13 +118,7 @@ PatchEnergy::Hosted PatchEnergy::hosted(int v) const {
   std::sort(h.vertices.begin(), h.vertices.end());
   std::sort(h.triangles.begin(), h.triangles.end());
   h.triangles.erase(std::unique(h.triangles.begin(), h.triangles.end()), h.triangles.end());
-  for (int g : h.triangles) {
-    std::array<int, 3>& slots = h.slots.emplace_back();
-    for (int k = 0; k < 3; ++k) {
-      const auto it = std::lower_bound(h.vertices.begin(), h.vertices.end(), back_triangle_[g][k]);
-      slots[k] = it != h.vertices.end() && *it == back_triangle_[g][k] ? int(it - h.vertices.begin()) : -1;
-    }
-  }
+  for (int g : h.triangles) h.slots.push_back(corner_slots(back_triangle_[g], h.vertices));
   return h;
 }
 

@@ -89,7 +89,7 @@ class PatchEnergy {
   double source_energy(int f, int i, const Image* q, const Jacobian* moved = nullptr,
                        PointGradient* gradient = nullptr) const;
   // Local target triangle g's energy with the re-mapped images (`slots`:
-  // its corners' in `remapped`, as Hosted::slots); with `gradient`, its
+  // its corners' indices in `remapped`, as Hosted::slots); with `gradient`, its
   // derivative (weighted as the trial weighs it) added.
   double target_energy(int g, const std::array<int, 3>& slots, const std::vector<std::pair<int, Remap>>& remapped,
                        PointGradient* gradient = nullptr) const;

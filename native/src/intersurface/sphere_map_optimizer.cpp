@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "common/coloured_sweeps.h"
+#include "common/corner_slots.h"
 #include "common/triangle_neighbours.h"
 #include "consistent_maps/errors.h"
 #include "consistent_maps/mesh_check.h"
@@ -116,13 +117,7 @@ double MapOptimizer::move(Side& s, Side& o, int v) const {
   const std::vector<int>& sampled = s.sampled_of[v];
   const std::vector<int> other_faces = o.around(o.sampled_of, inside);
   std::vector<std::array<int, 3>> other_slots;  // per corner of other_faces: its index in `inside`, -1 if not there
-  for (int g : other_faces) {
-    std::array<int, 3>& slots = other_slots.emplace_back();
-    for (int k = 0; k < 3; ++k) {
-      const auto it = std::lower_bound(inside.begin(), inside.end(), o.sampled[g][k]);
-      slots[k] = it != inside.end() && *it == o.sampled[g][k] ? int(it - inside.begin()) : -1;
-    }
-  }
+  for (int g : other_faces) other_slots.push_back(corner_slots(o.sampled[g], inside));
   std::vector<Image> inside_images(inside.size());
   std::vector<int> inside_faces(inside.size());
   const double to_moving = std::sqrt(o.area / s.area);
