@@ -60,14 +60,18 @@ def row(name, result, features, truth="", restarts=1):
 def main():
     lines = [f"Measured {machine()} (machine shared with other work), `cmaps intersurface A B --features FILE -o DIR "
              "--json [--restarts K]`, effort 1, default `--optimize 2`. Seconds: wall time of the whole command "
-             "(parameterize / optimize, summed over restarts and both maps). `--method auto`: the map through the common "
-             "sphere (restarts) and the direct map through a consistent partition, the less distorted kept (lower summed median; within 5 %: fewer flipped samples, by over 0.5 % of the triangles, else the direct map). Symmetric Dirichlet by vertex sampling (each source "
+             "(parameterize / optimize, summed over restarts and both maps). `--method auto`: the map through the "
+             "common sphere (restarts) and the direct map through a consistent partition, the less distorted kept "
+             "(lower summed median; within 5 %: fewer flipped samples, by over 0.5 % of the triangles, else the "
+             "direct map). Symmetric Dirichlet by vertex sampling (each source "
              "triangle onto the triangle its corners' images form, target scaled to the source's area; optimum 4): "
              "area-weighted mean and the median triangle's (restarts keep the least distorted likewise); "
-             "\"plain\": the composition before refitting and optimization (of the kept restart; for the direct map its final "
+             "\"plain\": the composition before refitting and optimization (of the kept restart; for the direct map "
+             "its final "
              "distortion). Ground truth: mean "
              "distance between a vertex's image and its true partner, % of the target's bounding-box diagonal "
-             "(target < 2 %); without features, how far the hand-picked ones' images land from their partners. Map folds: the map's own (`map_flipped`; through the sphere, triangles of the two "
+             "(target < 2 %); without features, how far the hand-picked ones' images land from their partners. "
+             "Map folds: the map's own (`map_flipped`; through the sphere, triangles of the two "
              "spherical maps flipped on the sphere; directly, triangles turned over in the patches' embeddings and "
              "vertices of B outside their host triangle of A); 0: bijective as computed, whatever the vertex "
              "sampling's flipped samples.", "",
@@ -102,7 +106,8 @@ def main():
             for restarts in CACTUS_RESTARTS:
                 result = run_cmaps("intersurface", str(CACTUS / "cactus0.ply"), str(CACTUS / f"cactus{pose}.ply"),
                                    "--features", str(features), "-o", out, "--restarts", str(restarts))
-                forward = np.linalg.norm(read_obj_vertices(out + "/A_on_B.obj") - other, axis=1).mean() / diagonal(other)
+                forward = (np.linalg.norm(read_obj_vertices(out + "/A_on_B.obj") - other, axis=1).mean()
+                           / diagonal(other))
                 backward = np.linalg.norm(read_obj_vertices(out + "/B_on_A.obj") - rest, axis=1).mean() / diagonal(rest)
                 emit(row(f"sets/cactus 0 - {pose}", result, "8 (farthest points)", restarts=restarts, truth=
                          f"{100 * forward:.1f} % / {100 * backward:.1f} %"))
@@ -114,7 +119,8 @@ def main():
             result = run_cmaps("intersurface", str(MESHES / a), str(MESHES / b), "--features", features, "-o", out)
             emit(row(f"{a} - {b}", result, f"{count} (bench/features/{file})", "n/a"))
             result = run_cmaps("intersurface", str(MESHES / a), str(MESHES / b), "-o", out)
-            emit(row(f"{a} - {b}", result, "0 (4 added)", truth=landmark_error(out, MESHES / b, file, column_a, column_b)))
+            emit(row(f"{a} - {b}", result, "0 (4 added)",
+                     truth=landmark_error(out, MESHES / b, file, column_a, column_b)))
     write_section("intersurface-sphere-benchmark", lines)
 
 
