@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "consistent_maps/errors.h"
@@ -11,9 +12,25 @@ namespace {
 
 const double kHeight = std::sqrt(3.0) / 2;  // of the canonical triangle (0, 0), (1, 0), (1/2, kHeight)
 
-}  // namespace
+// How far past a cell a triangle may reach and still be listed in it: a point
+// a rounding error outside a cell may be placed in it.
+constexpr double kCellSlack = 1e-9;
+// Cells across the root square per square root of the triangle count.
+constexpr int kCellsPerRootFace = 2;
 
-namespace {
+// The smallest and largest x of triangle c between heights lo and hi (lo <= y
+// <= hi); empty (min > max) when it does not reach there.
+std::pair<double, double> x_range(const std::array<Vec2, 3>& c, double lo, double hi) {
+  double min = std::numeric_limits<double>::infinity(), max = -min;
+  const auto take = [&](double x) { min = std::min(min, x), max = std::max(max, x); };
+  for (int k = 0; k < 3; ++k) {
+    const Vec2 &a = c[k], &b = c[(k + 1) % 3];
+    if (a.y() >= lo && a.y() <= hi) take(a.x());
+    for (double level : {lo, hi})
+      if ((a.y() - level) * (b.y() - level) < 0) take(a.x() + (level - a.y()) * (b.x() - a.x()) / (b.y() - a.y()));
+  }
+  return {min, max};
+}
 
 std::vector<std::array<Vec2, 3>> laid_out(const PartitionSide& side, const std::unordered_map<int, Vec2>& uv,
                                           const std::vector<int>& faces) {
@@ -34,24 +51,41 @@ PatchLocator::PatchLocator(const PartitionSide& side, const std::unordered_map<i
 
 PatchLocator::PatchLocator(std::vector<int> faces, std::vector<std::array<Vec2, 3>> corners)
     : faces_(std::move(faces)), corners_(std::move(corners)) {
-  cells_ = std::max(1, int(std::sqrt(double(faces_.size()))));
-  buckets_.resize(cells_ * cells_);
+  cells_ = std::max(1, int(kCellsPerRootFace * std::sqrt(double(faces_.size()))));
+  // Each triangle is listed in the cells it meets, row by row (not in every
+  // cell of its bounding box: the embeddings are full of long thin triangles).
+  // The outermost rows and columns reach to infinity, as cell() clamps.
+  const double infinity = std::numeric_limits<double>::infinity();
+  std::vector<std::pair<int, int>> listed;  // (cell, entry), entries increasing
   for (int i = 0; i < int(faces_.size()); ++i) {
-    const Vec2 lo = corners_[i][0].cwiseMin(corners_[i][1]).cwiseMin(corners_[i][2]);
-    const Vec2 hi = corners_[i][0].cwiseMax(corners_[i][1]).cwiseMax(corners_[i][2]);
-    const auto [x0, y0] = cell(lo);
-    const auto [x1, y1] = cell(hi);
-    for (int x = x0; x <= x1; ++x)
-      for (int y = y0; y <= y1; ++y) buckets_[y * cells_ + x].push_back(i);
+    const auto& c = corners_[i];
+    const int y0 = cell(c[0].cwiseMin(c[1]).cwiseMin(c[2])).second;
+    const int y1 = cell(c[0].cwiseMax(c[1]).cwiseMax(c[2])).second;
+    for (int y = y0; y <= y1; ++y) {
+      const double lo = y == 0 ? -infinity : y * kHeight / cells_ - kCellSlack;
+      const double hi = y == cells_ - 1 ? infinity : (y + 1) * kHeight / cells_ + kCellSlack;
+      const auto [left, right] = x_range(c, lo, hi);
+      if (left > right) continue;
+      const int x1 = cell(Vec2(right + kCellSlack, 0)).first;
+      for (int x = cell(Vec2(left - kCellSlack, 0)).first; x <= x1; ++x) listed.emplace_back(y * cells_ + x, i);
+    }
   }
+  // Counting sort by cell; each cell keeps its entries in increasing order.
+  bucket_start_.assign(cells_ * cells_ + 1, 0);
+  for (const auto& [k, i] : listed) ++bucket_start_[k + 1];
+  std::partial_sum(bucket_start_.begin(), bucket_start_.end(), bucket_start_.begin());
+  bucket_entries_.resize(listed.size());
+  std::vector<int> next(bucket_start_.begin(), bucket_start_.end() - 1);
+  for (const auto& [k, i] : listed) bucket_entries_[next[k]++] = i;
 }
 
 std::pair<int, std::array<double, 3>> PatchLocator::locate(const Vec2& p) const {
   const auto [x, y] = cell(p);
   const auto corners = [&](int i, std::array<Vec2, 3>& c) { c = corners_[i]; };
   Holder best;
-  const std::vector<int>& bucket = buckets_[y * cells_ + x];
-  find_holder(p, bucket.begin(), bucket.end(), corners, best);
+  const int at = y * cells_ + x;
+  find_holder(p, bucket_entries_.begin() + bucket_start_[at], bucket_entries_.begin() + bucket_start_[at + 1], corners,
+              best);
   if (best.score < -1e-9) {
     std::vector<int> all(faces_.size());
     std::iota(all.begin(), all.end(), 0);

@@ -1,7 +1,9 @@
 // Point location among one patch's triangles in its canonical triangle: a
-// grid of buckets over the triangles' bounding boxes. Any triangles of a side
-// laid out inside the unit square will do (corner_points: the refined faces of
-// one input triangle in a chart of it).
+// grid of buckets, each listing the triangles that meet its cell (not every
+// triangle whose bounding box does: the embeddings are full of long thin
+// triangles, and the boxes covered a hundred times their area). Any triangles
+// of a side laid out in the plane will do (corner_points: the refined faces
+// of one input triangle in a chart of it).
 #pragma once
 #include <algorithm>
 #include <array>
@@ -67,7 +69,8 @@ class PatchLocator {
   std::vector<int> faces_;
   std::vector<std::array<Vec2, 3>> corners_;  // per entry of faces_
   int cells_ = 1;
-  std::vector<std::vector<int>> buckets_;  // entries of faces_
+  // Entries of faces_ meeting each cell: cell k's are bucket_entries_[bucket_start_[k], bucket_start_[k + 1]).
+  std::vector<int> bucket_start_, bucket_entries_;
 };
 
 }  // namespace cmaps
