@@ -28,9 +28,10 @@ Layout fan(int n) {
   return layout;
 }
 
-// A grid of nx by ny cells, each cut into two triangles, 60 times wider than
-// tall, turned by `angle` about the canonical triangle's middle: long thin
-// triangles whose bounding boxes overlap many others, some outside the unit square.
+// A grid of nx by ny cells (1.3 / nx wide, 1 / ny tall), each cut into two
+// triangles, turned by `angle` about the canonical triangle's middle: with few
+// rows, long thin triangles whose bounding boxes overlap many others, some
+// outside the unit square.
 Layout turned_grid(int nx, int ny, double angle) {
   Layout layout;
   const Vec2 middle(0.5, 0.3);
