@@ -1,6 +1,7 @@
 // PatchLocator's grid against a scan of every triangle, on layouts of long
 // thin triangles like the patch embeddings': the same triangle and weights for
-// points inside, on edges and corners, and a rounding error or more outside.
+// points inside, on edges and corners, and a rounding error or more outside;
+// and with a hint, the same as without.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -97,10 +98,31 @@ void expect_as_scanned(const Layout& layout) {
   }
 }
 
+// A hint (the triangle found, its neighbours in the list, one far off, none,
+// a face the locator does not hold) never changes what is found: on edges and
+// corners, where the hint holds p too, the grid's triangle still comes out.
+void expect_hints_change_nothing(const Layout& layout) {
+  std::vector<int> faces(layout.corners.size());
+  for (int i = 0; i < int(faces.size()); ++i) faces[i] = 10 * i + 3;
+  const PatchLocator locator(faces, layout.corners);
+  const int n = int(faces.size());
+  for (const Vec2& p : queries(layout)) {
+    const auto found = locator.locate(p);
+    const int i = found.first / 10;
+    for (int hint : {found.first, faces[(i + 1) % n], faces[(i + n - 1) % n], faces[(i + n / 2) % n], -1, 7})
+      ASSERT_EQ(locator.locate(p, hint), found) << "at (" << p.x() << ", " << p.y() << "), hint " << hint;
+  }
+}
+
 TEST(PatchLocator, FanOfSliversAsScanned) { expect_as_scanned(fan(400)); }
 
 TEST(PatchLocator, TurnedThinGridAsScanned) {
   for (double angle : {0.0, 0.5, 1.2, 2.0}) expect_as_scanned(turned_grid(120, 2, angle));
+}
+
+TEST(PatchLocator, HintsChangeNothing) {
+  expect_hints_change_nothing(fan(400));
+  for (double angle : {0.0, 1.2}) expect_hints_change_nothing(turned_grid(120, 2, angle));
 }
 
 TEST(PatchLocator, EmptyLayoutRefused) {

@@ -44,6 +44,7 @@ struct CrossPatchMap::Move {
   int home = -1;
   Vec2 point = Vec2::Zero();
   Image image;
+  int image_face = -1;  // B's triangle holding the image
   std::vector<std::pair<int, Rehost>> rehosted;  // per vertex of B, in Ring::hosted's order
   double energy = kChordInf;
   double folded = 0;  // the folded chords' area, projected on the surface there
@@ -98,7 +99,8 @@ CrossPatchMap::CrossPatchMap(const ConsistentPartition& partition, int moving, G
 
   locate_b_ = b_glued_.locators();
   image_.resize(na);
-  for (int v = 0; v < na; ++v) image_[v] = image_on_b(a_glued_.home(v), a_glued_.point(v));
+  image_face_.assign(na, -1);
+  for (int v = 0; v < na; ++v) image_[v] = image_on_b(a_glued_.home(v), a_glued_.point(v), -1, &image_face_[v]);
 
   // B's vertices, each in A's triangle holding it.
   host_.resize(nb);
@@ -113,9 +115,10 @@ CrossPatchMap::CrossPatchMap(const ConsistentPartition& partition, int moving, G
   }
 }
 
-Image CrossPatchMap::image_on_b(int home, const Vec2& point) const {
-  const auto [face, w] = locate_b_[home].locate(point);
-  return image_in(b_, face, w, scale_);
+Image CrossPatchMap::image_on_b(int home, const Vec2& point, int hint, int* face) const {
+  const auto [f, w] = locate_b_[home].locate(point, hint);
+  if (face) *face = f;
+  return image_in(b_, f, w, scale_);
 }
 
 double CrossPatchMap::total_energy() const {
@@ -235,7 +238,7 @@ CrossPatchMap::Move CrossPatchMap::trial(int v, const Vec2& q, const Ring& ring,
     }
   }
   if (!base_.home_of(a_glued_.home(v), q, m.home, m.point)) return m;
-  m.image = image_on_b(m.home, m.point);
+  m.image = image_on_b(m.home, m.point, image_face_[v], &m.image_face);
 
   // B's vertices inside the ring: the ring triangle holding each with v at q.
   const auto corners = [&](int i, std::array<Vec2, 3>& c) { c = laid[i]; };
@@ -258,7 +261,7 @@ CrossPatchMap::Move CrossPatchMap::trial(int v, const Vec2& q, const Ring& ring,
       int home;
       Vec2 at;
       if (!base_.home_of(a_glued_.home(v), x, home, at)) return std::nullopt;
-      return image_on_b(home, at).position;
+      return image_on_b(home, at, m.image_face).position;
     });
   double e = 0;
   // One chord triangle's energy, weighted, and its derivative through the corners moving with q.
@@ -343,6 +346,7 @@ bool CrossPatchMap::improve(int v) {
 void CrossPatchMap::apply(int v, const Move& move) {
   a_glued_.move(v, move.home, move.point);
   image_[v] = move.image;
+  image_face_[v] = move.image_face;
   for (int f : a_.mesh.faces_of(v)) hosted_[f].clear();
   for (const auto& [w, rehost] : move.rehosted) {
     host_[w] = rehost.at;

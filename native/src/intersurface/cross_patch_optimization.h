@@ -130,7 +130,8 @@ class CrossPatchMap {
                                           const TriangleMesh& b_input, int threads) const;
   // A point of a side's refined mesh as a base triangle and canonical point.
   static std::pair<int, Vec2> canonical_point(const GluedSide& side, const RefinedPoint& p);
-  Image image_on_b(int home, const Vec2& point) const;
+  // B's point (base triangle, canonical point) on B, trying B's triangle `hint` first.
+  Image image_on_b(int home, const Vec2& point, int hint, int* face = nullptr) const;
 
   const PartitionSide& a_;
   const PartitionSide& b_;
@@ -143,6 +144,7 @@ class CrossPatchMap {
   std::vector<SourceTriangle> shape_a_, shape_b_;  // per triangle (zero for a hole's fan)
   SplitTriangles split_a_, split_b_;               // input triangles cut by paths, charged by their chords too
   std::vector<Image> image_;               // per vertex of A: its image on B
+  std::vector<int> image_face_;            // per vertex of A: B's triangle holding its image
   std::vector<PatchLocator> locate_b_;     // per base triangle: B's triangles reaching into it
   std::vector<RefinedPoint> host_;          // per vertex of B: the triangle of A holding it
   std::vector<Image> back_image_;           // per vertex of B: its image on A

@@ -20,9 +20,12 @@ std::vector<int> sorted_corners(const PartitionSide& side, const std::vector<int
   return corners;
 }
 
-Image locate(const PatchLocator& locator, const PartitionSide& side, const Vec2& p, double scale) {
-  const auto [face, w] = locator.locate(p);
-  return image_in(side, face, w, scale);
+// p's image on the target, trying the target's triangle `hint` first; `face` gets the triangle holding it.
+Image locate(const PatchLocator& locator, const PartitionSide& side, const Vec2& p, double scale, int hint,
+             int* face = nullptr) {
+  const auto [f, w] = locator.locate(p, hint);
+  if (face) *face = f;
+  return image_in(side, f, w, scale);
 }
 
 }  // namespace
@@ -37,11 +40,12 @@ PatchEnergy::PatchEnergy(const PartitionSide& source, std::unordered_map<int, Ve
   for (int i = 0; i < int(vertex_.size()); ++i) local_[vertex_[i]] = i;
   point_.resize(vertex_.size());
   image_.resize(vertex_.size());
+  image_face_.assign(vertex_.size(), -1);
   active_.assign(vertex_.size(), 0);
   changed_.assign(vertex_.size(), 1);
   for (int i = 0; i < int(vertex_.size()); ++i) {
     point_[i] = uv.at(vertex_[i]);
-    image_[i] = locate(*target_locator_, target, point_[i], scale);
+    image_[i] = locate(*target_locator_, target, point_[i], scale, -1, &image_face_[i]);
   }
   // A hole's temporary fan keeps its embedding valid but weighs nothing.
   ring_.resize(vertex_.size());
@@ -132,7 +136,7 @@ PatchEnergy::Move PatchEnergy::trial(int v, const Vec2& p, const Hosted& inside,
   const auto corners = [&](int f, std::array<Vec2, 3>& c) {
     for (int k = 0; k < 3; ++k) c[k] = triangle_[f][k] == i ? p : point_[triangle_[f][k]];
   };
-  m.image = locate(*target_locator_, target_, p, scale_);
+  m.image = locate(*target_locator_, target_, p, scale_, image_face_[i], &m.image_face);
   // Target vertices inside the ring: their source triangle with v at p.
   m.remapped.reserve(inside.vertices.size());
   for (int w : inside.vertices) {
@@ -153,7 +157,7 @@ PatchEnergy::Move PatchEnergy::trial(int v, const Vec2& p, const Hosted& inside,
   Jacobian moved = Jacobian::Zero();  // m.image's derivative by p
   if (gradient)
     moved = image_jacobian(p, m.image.position, 1e-4 * inside.length, [&](const Vec2& x) {
-      return std::optional<Vec3>(locate(*target_locator_, target_, x, scale_).position);
+      return std::optional<Vec3>(locate(*target_locator_, target_, x, scale_, m.image_face).position);
     });
   double e = 0;
   for (int f : faces) e += source_energy(f, i, &m.image, &moved, gradient);
@@ -189,6 +193,7 @@ void PatchEnergy::apply(int v, const Move& m) {
     for (int j : triangle_[f]) changed_[j] = 1;
   uv_[v] = point_[i] = m.point;
   image_[i] = m.image;
+  image_face_[i] = m.image_face;
   for (int f : ring_[i]) host_[f].clear();
   for (const auto& [w, remap] : m.remapped) {
     back_image_[w] = remap.image;

@@ -58,6 +58,7 @@ class PatchEnergy {
   struct Move {
     Vec2 point;
     Image image;
+    int image_face = -1;  // the target's triangle holding the image
     std::vector<std::pair<int, Remap>> remapped;  // per local target vertex, in Hosted::vertices' order
     double energy = kChordInf;
   };
@@ -105,6 +106,7 @@ class PatchEnergy {
   std::unordered_map<int, int> local_;
   std::vector<Vec2> point_;
   std::vector<Image> image_;
+  std::vector<int> image_face_;  // per vertex: the target's triangle holding its image
   std::vector<int> face_;                     // per local triangle: its index in the mesh
   std::vector<std::array<int, 3>> triangle_;  // and its local corners
   std::vector<SourceTriangle> shape_;

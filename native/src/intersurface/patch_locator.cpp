@@ -77,6 +77,19 @@ PatchLocator::PatchLocator(std::vector<int> faces, std::vector<std::array<Vec2, 
   bucket_entries_.resize(listed.size());
   std::vector<int> next(bucket_start_.begin(), bucket_start_.end() - 1);
   for (const auto& [k, i] : listed) bucket_entries_[next[k]++] = i;
+  entry_of_face_.reserve(faces_.size());
+  for (int i = 0; i < int(faces_.size()); ++i) entry_of_face_.emplace_back(faces_[i], i);
+  std::sort(entry_of_face_.begin(), entry_of_face_.end());
+}
+
+std::pair<int, std::array<double, 3>> PatchLocator::locate(const Vec2& p, int hint) const {
+  const auto it = std::lower_bound(entry_of_face_.begin(), entry_of_face_.end(), std::pair<int, int>(hint, -1));
+  if (it != entry_of_face_.end() && it->first == hint) {
+    const auto& c = corners_[it->second];
+    const std::array<double, 3> w = barycentric(p, c[0], c[1], c[2]);
+    if (std::min({w[0], w[1], w[2]}) > kSurelyInside) return normalized(hint, w);
+  }
+  return locate(p);
 }
 
 std::pair<int, std::array<double, 3>> PatchLocator::locate(const Vec2& p) const {
@@ -92,10 +105,15 @@ std::pair<int, std::array<double, 3>> PatchLocator::locate(const Vec2& p) const 
     find_holder(p, all.begin(), all.end(), corners, best);
   }
   if (best.face < 0) throw Error("internal error: point outside every patch triangle");
+  return normalized(faces_[best.face], best.weights);
+}
+
+// Weights clamped to the triangle and summing to 1.
+std::pair<int, std::array<double, 3>> PatchLocator::normalized(int face, std::array<double, 3> weights) {
   double sum = 0;
-  for (double& w : best.weights) sum += (w = std::max(0.0, w));
-  for (double& w : best.weights) w = sum > 0 ? w / sum : 1.0 / 3;
-  return {faces_[best.face], best.weights};
+  for (double& w : weights) sum += (w = std::max(0.0, w));
+  for (double& w : weights) w = sum > 0 ? w / sum : 1.0 / 3;
+  return {face, weights};
 }
 
 std::pair<int, int> PatchLocator::cell(const Vec2& p) const {

@@ -62,15 +62,21 @@ class PatchLocator {
   // rounding error off the patch) and p's barycentric weights there, clamped
   // to the triangle and normalized.
   std::pair<int, std::array<double, 3>> locate(const Vec2& p) const;
+  // The same, first trying triangle `hint` (a face of the patch, or -1): a
+  // point moved a little usually stays in its triangle, and a triangle that
+  // surely holds p is the one the grid finds (the triangles do not overlap).
+  std::pair<int, std::array<double, 3>> locate(const Vec2& p, int hint) const;
 
  private:
   std::pair<int, int> cell(const Vec2& p) const;
+  static std::pair<int, std::array<double, 3>> normalized(int face, std::array<double, 3> weights);
 
   std::vector<int> faces_;
   std::vector<std::array<Vec2, 3>> corners_;  // per entry of faces_
   int cells_ = 1;
   // Entries of faces_ meeting each cell: cell k's are bucket_entries_[bucket_start_[k], bucket_start_[k + 1]).
   std::vector<int> bucket_start_, bucket_entries_;
+  std::vector<std::pair<int, int>> entry_of_face_;  // (face, entry of faces_), sorted
 };
 
 }  // namespace cmaps
