@@ -8,6 +8,7 @@
 #include "consistent_maps/errors.h"
 #include "consistent_maps/intersurface_map.h"
 #include "consistent_maps/mesh_check.h"
+#include "intersurface/map_distortion.h"
 #include "intersurface/symmetric_dirichlet.h"
 #include "paths/mesh_holes.h"
 
@@ -25,8 +26,19 @@ std::vector<Vec3> surface_positions(const TriangleMesh& target, const std::vecto
   return positions;
 }
 
+double facing(const TriangleMesh& closed_source, const TriangleMesh& closed_target) {
+  return signed_volume(closed_source) * signed_volume(closed_target) < 0 ? -1.0 : 1.0;
+}
+
 TriangleDistortion triangle_distortion(const TriangleMesh& source, const TriangleMesh& target,
                                        const std::vector<SurfacePoint>& image) {
+  // Judged with their holes closed: an open mesh's volume changes sign with where the origin lies.
+  return triangle_distortion(source, target, image,
+                             facing(close_holes(source, true).mesh, close_holes(target, true).mesh));
+}
+
+TriangleDistortion triangle_distortion(const TriangleMesh& source, const TriangleMesh& target,
+                                       const std::vector<SurfacePoint>& image, double facing) {
   if (image.size() != source.vertices.size())
     throw InvalidInput("the map has " + std::to_string(image.size()) + " images for " +
                        std::to_string(source.vertices.size()) + " vertices");
@@ -34,10 +46,7 @@ TriangleDistortion triangle_distortion(const TriangleMesh& source, const Triangl
   const double source_area = surface_area(source), target_area = surface_area(target);
   const double scale = target_area > 0 ? std::sqrt(source_area / target_area) : 1;  // target to the source's area
   // Normals of the target, turned to face like the source's when one of the
-  // two meshes lists its triangles inwards (judged with their holes closed:
-  // an open mesh's volume changes sign with where the origin lies).
-  const double facing =
-      signed_volume(close_holes(source, true).mesh) * signed_volume(close_holes(target, true).mesh) < 0 ? -1.0 : 1.0;
+  // two meshes lists its triangles inwards (`facing`).
   // Unit normals, as both map optimizers weigh them (surface_image.h): an
   // image on a large triangle says no more about the surface under a chord
   // than one on a small triangle (weighted by area, a chord from a small
@@ -129,6 +138,11 @@ MapDistortion summarize(const TriangleDistortion& per_triangle) {
 MapDistortion measure_intersurface_map(const TriangleMesh& source, const TriangleMesh& target,
                                        const std::vector<SurfacePoint>& image) {
   return summarize(triangle_distortion(source, target, image));
+}
+
+MapDistortion measure_intersurface_map(const TriangleMesh& source, const TriangleMesh& target,
+                                       const std::vector<SurfacePoint>& image, double facing) {
+  return summarize(triangle_distortion(source, target, image, facing));
 }
 
 }  // namespace cmaps

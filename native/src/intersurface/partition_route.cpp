@@ -14,6 +14,7 @@
 #include "intersurface/farthest_points.h"
 #include "intersurface/hole_rims.h"
 #include "intersurface/map_choice.h"
+#include "intersurface/map_distortion.h"
 #include "intersurface/patch_balance.h"
 #include "intersurface/patch_map_optimization.h"
 #include "intersurface/patch_parameterization.h"
@@ -134,8 +135,9 @@ void map_partition(ConsistentPartition& partition, const ClosedMesh& closed_a, c
 
   stage = Clock::now();
   result.map_flipped = across->turned_triangles() + across->stray_hosts();
-  result.distortion_a_to_b = result.composition_a_to_b = measure_intersurface_map(a, b, result.a_to_b);
-  result.distortion_b_to_a = result.composition_b_to_a = measure_intersurface_map(b, a, result.b_to_a);
+  const double facing_ab = facing(ca, cb);
+  result.distortion_a_to_b = result.composition_a_to_b = measure_intersurface_map(a, b, result.a_to_b, facing_ab);
+  result.distortion_b_to_a = result.composition_b_to_a = measure_intersurface_map(b, a, result.b_to_a, facing_ab);
   result.seconds_measure = seconds_since(stage);
 }
 

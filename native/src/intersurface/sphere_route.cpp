@@ -12,8 +12,10 @@
 #include "consistent_maps/sphere_locator.h"
 #include "consistent_maps/stretch_metric.h"
 #include "intersurface/map_choice.h"
+#include "intersurface/map_distortion.h"
 #include "intersurface/sphere_map_optimizer.h"
 #include "intersurface/sphere_pair.h"
+#include "paths/mesh_holes.h"
 
 namespace cmaps {
 namespace {
@@ -177,9 +179,10 @@ void map_through_sphere_pair(const TriangleMesh& a, const TriangleMesh& b, const
     result.a_to_b = map_through_sphere(map_a.sphere, b, map_b, a_to_b, threads);
     result.b_to_a = map_through_sphere(map_b.sphere, a, map_a, b_to_a, threads);
   };
+  const double facing_ab = facing(close_holes(a, true).mesh, close_holes(b, true).mesh);
   const auto measure = [&](MapDistortion& forward, MapDistortion& backward) {
-    forward = measure_intersurface_map(a, b, result.a_to_b);
-    backward = measure_intersurface_map(b, a, result.b_to_a);
+    forward = measure_intersurface_map(a, b, result.a_to_b, facing_ab);
+    backward = measure_intersurface_map(b, a, result.b_to_a, facing_ab);
   };
   // With holes, no refit: it does not keep boundary vertices on their arcs.
   const bool closed = map_a.holes == 0 && map_b.holes == 0;
