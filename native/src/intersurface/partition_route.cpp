@@ -174,7 +174,7 @@ PatchPartitions partition_pair(const TriangleMesh& a, const TriangleMesh& b, con
     pairs.push_back({far_a, PathGuide({}, {}, a, b).nearest(a.vertices[far_a], b.vertices)});
   }
   TriangleMesh b_like_a = closed_b.mesh;
-  const bool turned = signed_volume(closed_a.mesh) * signed_volume(closed_b.mesh) < 0;
+  const bool turned = facing(closed_a.mesh, closed_b.mesh) < 0;
   if (turned)
     for (Triangle& t : b_like_a.triangles) std::swap(t[1], t[2]);
   PartitionHoles holes;
