@@ -1,12 +1,12 @@
 #include "intersurface/patch_balance.h"
 
 #include <Eigen/Sparse>
-#include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
 #include <unordered_set>
 
+#include "common/diagonally_dominant_lu.h"
 #include "consistent_maps/errors.h"
 
 namespace cmaps {
@@ -217,7 +217,7 @@ class PathRetrace {
     }
     Eigen::SparseMatrix<double> matrix(n, n);
     matrix.setFromTriplets(entries.begin(), entries.end());
-    Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+    DiagonallyDominantLU lu;
     lu.compute(matrix);
     if (lu.info() != Eigen::Success) throw Error("internal error: the path's harmonic function has no solution");
     phi0_ = lu.solve(rhs0);

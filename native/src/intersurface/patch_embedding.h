@@ -4,11 +4,10 @@
 // boundary and no edge between two boundary vertices (Floater 2003), whatever
 // the positive weights, so callers reweight freely and solve again.
 #pragma once
-#include <Eigen/Sparse>
-#include <Eigen/SparseLU>
 #include <unordered_map>
 #include <vector>
 
+#include "common/diagonally_dominant_lu.h"
 #include "intersurface/patch_parameterization.h"
 
 namespace cmaps {
@@ -36,7 +35,7 @@ class PatchEmbedding {
   const std::vector<int>& faces_;
   std::unordered_map<int, Vec2>& uv_;
   std::unordered_map<int, int> index_;  // interior vertex -> unknown
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> solver_;
+  DiagonallyDominantLU solver_;
   bool analyzed_ = false;
 };
 
