@@ -73,9 +73,9 @@ TEST(DiagonallyDominantLU, SolvesAsColamdWithLessFill) {
   EXPECT_LT((x - expected).cwiseAbs().maxCoeff(), 1e-9 * expected.cwiseAbs().maxCoeff());
   std::printf("camel: %ld nonzeros in L and U, COLAMD's %ld\n", long(lu.nnzL() + lu.nnzU()),
               long(colamd.nnzL() + colamd.nnzU()));
-  // Measured 0.81 of COLAMD's here, 0.52-0.71 on disks of 1,000 to 48,000 of
-  // the horse's and the gargoyle's vertices; AMD's permutation applied the
-  // wrong way round fills ten times COLAMD's.
+  // Measured 0.81 of COLAMD's here, 0.54-0.73 on disks of 1,000 to 48,000 of
+  // the horse's and the gargoyle's vertices (bench/lu_ordering_benchmark);
+  // AMD's permutation applied the wrong way round fills 29 times COLAMD's.
   EXPECT_LT(double(lu.nnzL() + lu.nnzU()), 0.9 * double(colamd.nnzL() + colamd.nnzU()));
 }
 
