@@ -129,8 +129,8 @@ def main():
                 arguments = ["--starts", str(starts)] if starts else []
                 result = run_cmaps("intersurface", str(files[a]), str(files[b]), "-o", tmp + "/out", *arguments)
                 note = (" `--starts 1`: the first pair only" if starts else
-                        f" {len(result['start_median_dirichlet'])} first pairs screened, summed medians before "
-                        "optimization " +
+                        f" {len(result['start_median_dirichlet'])} first pairs screened (patch areas matched, no "
+                        "sweeps), summed medians " +
                         " / ".join(f"{m:.1f}" for m in result["start_median_dirichlet"]))
                 lines.append(row(f"{a} - {b}", result, note))
                 print(lines[-1], flush=True)

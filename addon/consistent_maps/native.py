@@ -50,7 +50,8 @@ def intersurface_map(mesh_a, mesh_b, feature_pairs, *, effort, seed, threads, pr
     'b_to_a_*', and 'genus', 'symmetric_dirichlet' (A to B, B to A), 'seconds'. Genus 0: the least
     distorted of `restarts` maps through the sphere and of the direct map ('method' says which was kept).
     The direct map of a pair without feature pairs and holes starts from the least distorted of 8 automatic
-    first pairs mapped without optimization (`restarts` of them optimized, the least distorted kept). corner_images: also per triangle corner (row 3 t + k) the image of a
+    first pairs mapped with their patches' areas matched but without the local sweeps (`restarts` of them
+    optimized, the least distorted kept). corner_images: also per triangle corner (row 3 t + k) the image of a
     point of the triangle next to it ('a_corners_to_b_triangle', 'a_corners_to_b_barycentric',
     'b_corners_to_a_*'), for per-corner values such as UVs."""
     return _native.intersurface_map(mesh_a, mesh_b, feature_pairs, restarts=restarts, effort=effort, seed=seed,

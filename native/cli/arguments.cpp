@@ -116,8 +116,9 @@ options:
                      and parts as its automatic first pair decides (A's
                      vertex farthest from its centroid and B's nearest in
                      A's frame, or another of A's spread by farthest-point
-                     sampling): S first pairs are each mapped without
-                     optimization and the least distorted one optimized
+                     sampling): S first pairs are each mapped with their
+                     patches' areas matched but without the local sweeps,
+                     and the least distorted one optimized
                      (1..100, default 8; JSON: start_median_dirichlet)
   --method M         intersurface, transfer (genus 0): map through the common
                      sphere, directly through a consistent partition as for

@@ -119,6 +119,8 @@ struct IntersurfaceOptions {
   // Genus 0: the composed map is then optimized for symmetric distortion,
   // `rounds` times A -> B (moving A's sphere points over B) and B -> A, each
   // at most `sweeps` sweeps over the vertices. 0 keeps the plain composition.
+  // The direct map: rounds > 0 optimizes it (each patch's areas matched to
+  // its partner's, then at most `sweeps` sweeps, then cross_sweeps below).
   int optimize_rounds = 2;
   int optimize_sweeps = 20;
   // Genus 0: the first round's sweeps follow smooth deformations of whole
@@ -154,11 +156,17 @@ struct IntersurfaceOptions {
   // the one farthest from its centroid, B's nearest in A's frame; for genus
   // 0, B's extremity nearest it, as described above) decides
   // how the partition pairs the surfaces' handles and parts, and between
-  // different shapes the maps differ widely (kitten - rocker-arm, four
-  // starts: summed medians 22.0, 20.2, 14.3, 32.4) but rank alike before the
-  // optimization (28.6, 25.7, 18.3, 40.6). So this many first pairs are each
-  // mapped without optimization (from both sides, balanced or not), and the
-  // least distorted ones optimized (IntersurfaceResult::start_median_dirichlet).
+  // different shapes the maps differ widely (kitten - rocker-arm, eight
+  // starts: summed medians 19.8, 16.7, 13.2, 26.0, 14.0, 33.5, 13.3, 16.9)
+  // but rank alike once each patch's areas are matched to its partner's,
+  // before the local sweeps (27.0, 23.4, 16.1, 33.7, 17.1, 39.7, 16.2, 20.3;
+  // the plain embeddings pick the fifth: 28.6, 25.7, 18.3, 40.6, 17.7, ...).
+  // So this many first pairs are each mapped that far (from both sides,
+  // balanced or not), and the least distorted ones optimized
+  // (IntersurfaceResult::start_median_dirichlet). Over the five unfeatured
+  // pairs of the genus >= 1 benchmark, cow - horse and bunny - gargoyle, the
+  // start so picked ended least distorted of the eight in all seven (the
+  // plain embeddings' pick in three).
   // Eight rather than four: the five featureless pairs of the genus >= 1
   // benchmark, summed medians -7 % and folded samples -28 % (eight - skull
   // and cup - skull find better first pairs, the kittens' maps move by under
@@ -282,7 +290,8 @@ struct IntersurfaceResult {
   std::vector<int> restart_flipped;
   // The direct map of a pair without features and holes, optimized: per
   // automatic first pair tried (IntersurfaceOptions::starts), the summed
-  // median symmetric Dirichlet energy of its map before optimization.
+  // median symmetric Dirichlet energy of its screened map (each patch's areas
+  // matched to its partner's, before the local sweeps).
   std::vector<double> start_median_dirichlet;
   MapDistortion composition_a_to_b, composition_b_to_a;
   // Wall time per stage: unconstrained maps for added features (genus 0),
