@@ -165,8 +165,9 @@ struct IntersurfaceOptions {
   // balanced or not), and the least distorted ones optimized
   // (IntersurfaceResult::start_median_dirichlet). Over the five unfeatured
   // pairs of the genus >= 1 benchmark, cow - horse and bunny - gargoyle, the
-  // start so picked ended least distorted of the eight in all seven (the
-  // plain embeddings' pick in three).
+  // start so picked ended with the lowest summed median of the eight in all
+  // seven (the plain embeddings' pick in three; on the kittens' pairs the
+  // lower medians came with more folded samples, BENCHMARKS.md).
   // Eight rather than four: the five featureless pairs of the genus >= 1
   // benchmark, summed medians -7 % and folded samples -28 % (eight - skull
   // and cup - skull find better first pairs, the kittens' maps move by under
