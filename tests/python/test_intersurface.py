@@ -302,8 +302,8 @@ def test_genus_one_map_reports_where_its_paths_run(native):
 
 def test_genus_one_first_pairs_are_screened(native):
     """Without feature pairs, the partition is traced from `starts` first pairs, each mapped with its patches' areas
-    matched but without the local sweeps ('start_median_dirichlet'), and the least distorted optimized; restarts optimize that many of them, keeping the
-    least distorted; given pairs, one map."""
+    matched but without the local sweeps ('start_median_dirichlet'), and the least distorted optimized; restarts
+    optimize that many of them, keeping the least distorted; given pairs, one map."""
     a, b = native.read_mesh(str(TORUS)), native.read_mesh(str(KNOT))
     none = np.zeros((0, 2), np.int64)
     r = native.intersurface_map(a, b, none, restarts=2)
