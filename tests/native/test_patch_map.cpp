@@ -14,6 +14,7 @@
 #include "intersurface/chord_energy.h"
 #include "intersurface/consistent_partition.h"
 #include "intersurface/cross_patch_optimization.h"
+#include "intersurface/patch_energy.h"
 #include "intersurface/patch_map_optimization.h"
 #include "intersurface/patch_parameterization.h"
 #include "intersurface/split_triangles.h"
@@ -178,6 +179,53 @@ TEST(PatchMapOptimization, AreaMatchingNearsTheTruthAndKeepsEveryPatchEmbedded) 
     for (const auto& [v, q] : matched.uv[t])
       if (on_path[v]) EXPECT_EQ(q, plain.uv[t].at(v)) << "path vertex " << v << " moved";
   }
+}
+
+TEST(PatchMapOptimization, AReembeddedEnergyIsAFreshOne) {
+  // The area rounds embed a patch anew and re-read it into the same
+  // PatchEnergy: after sweeps have moved its vertices (images, hosts,
+  // back images all changed), re-embedding onto the area-matched points
+  // must leave exactly what a PatchEnergy built on them holds, trials
+  // included (a host list left stale changes a trial's re-mapped vertices).
+  CactusPoses poses(5);
+  ConsistentPartition& p = poses.p;
+  PartitionSide &a = p.sides[0], &b = p.sides[1];
+  const PatchParameterization plain = parameterize_patches(a, p), uv_b = parameterize_patches(b, p);
+  PatchParameterization matched = plain;
+  optimize_patch_map(a, matched, b, uv_b, 0, 1);
+  const std::vector<char> on_path = on_paths(a);
+  const double scale = std::sqrt(side_area(a) / side_area(b));
+  int moved = 0, compared = 0;
+  for (int t = 0; t < int(p.triangles.size()); ++t) {
+    std::vector<int> faces, target_faces;
+    for (int f = 0; f < int(a.patch.size()); ++f)
+      if (a.patch[f] == t) faces.push_back(f);
+    for (int g = 0; g < int(b.patch.size()); ++g)
+      if (b.patch[g] == t) target_faces.push_back(g);
+    std::unordered_map<int, Vec2> uv = plain.uv[t], fresh_uv = matched.uv[t];
+    PatchEnergy reused(a, uv, faces, b, uv_b.uv[t], target_faces, scale);
+    for (int sweep = 0; sweep < 3; ++sweep) {
+      reused.begin_sweep();
+      for (const auto& [v, q] : plain.uv[t]) moved += !on_path[v] && reused.improve(v);
+    }
+    uv = matched.uv[t];
+    reused.reembed();
+    const PatchEnergy fresh(a, fresh_uv, faces, b, uv_b.uv[t], target_faces, scale);
+    double area = 0, fresh_area = 0;
+    EXPECT_EQ(reused.total(area), fresh.total(fresh_area));
+    EXPECT_EQ(area, fresh_area);
+    EXPECT_EQ(reused.area_ratios(), fresh.area_ratios());
+    for (const auto& [v, q] : matched.uv[t]) {
+      if (on_path[v] || v % 7 != 0) continue;
+      const PatchEnergy::Hosted inside = reused.hosted(v), fresh_inside = fresh.hosted(v);
+      ASSERT_EQ(inside.vertices, fresh_inside.vertices);
+      const Vec2 step = q + 0.1 * inside.length * Vec2(1, 1).normalized();
+      EXPECT_EQ(reused.trial(v, step, inside).energy, fresh.trial(v, step, fresh_inside).energy);
+      ++compared;
+    }
+  }
+  EXPECT_GT(moved, 100);
+  EXPECT_GT(compared, 100);
 }
 
 TEST(PatchParameterization, TurnedTrianglesAreCounted) {

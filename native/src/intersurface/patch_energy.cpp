@@ -35,18 +35,8 @@ PatchEnergy::PatchEnergy(const PartitionSide& source, std::unordered_map<int, Ve
                          const std::vector<int>& target_faces, double scale)
     : source_(source), uv_(uv), target_(target), scale_(scale) {
   target_locator_ = std::make_unique<PatchLocator>(target, target_uv, target_faces);
-  const PatchLocator onto_source(source, uv, faces);
   vertex_ = sorted_corners(source, faces);
   for (int i = 0; i < int(vertex_.size()); ++i) local_[vertex_[i]] = i;
-  point_.resize(vertex_.size());
-  image_.resize(vertex_.size());
-  image_face_.assign(vertex_.size(), -1);
-  active_.assign(vertex_.size(), 0);
-  changed_.assign(vertex_.size(), 1);
-  for (int i = 0; i < int(vertex_.size()); ++i) {
-    point_[i] = uv.at(vertex_[i]);
-    image_[i] = locate(*target_locator_, target, point_[i], scale, -1, &image_face_[i]);
-  }
   // A hole's temporary fan keeps its embedding valid but weighs nothing.
   ring_.resize(vertex_.size());
   for (int f : faces) {
@@ -56,30 +46,45 @@ PatchEnergy::PatchEnergy(const PartitionSide& source, std::unordered_map<int, Ve
     shape_.push_back(source.in_fan(f) ? SourceTriangle() : shape_of(source, f));
     for (int k = 0; k < 3; ++k) ring_[triangle_.back()[k]].push_back(int(triangle_.size()) - 1);
   }
-  std::unordered_map<int, int> local_face;
-  for (int i = 0; i < int(faces.size()); ++i) local_face[faces[i]] = i;
+  for (int i = 0; i < int(face_.size()); ++i) local_face_[face_[i]] = i;
   const std::vector<int> target_vertex = sorted_corners(target, target_faces);
   std::unordered_map<int, int> target_local;
   for (int i = 0; i < int(target_vertex.size()); ++i) target_local[target_vertex[i]] = i;
-  back_image_.resize(target_vertex.size());
   target_point_.resize(target_vertex.size());
   target_ring_.resize(target_vertex.size());
-  host_.resize(faces.size());
-  std::vector<char> seen(target_vertex.size(), 0);
   for (int g : target_faces) {
     const Triangle& t = target.mesh.triangles()[g];
     back_triangle_.push_back({target_local.at(t[0]), target_local.at(t[1]), target_local.at(t[2])});
     back_shape_.push_back(target.in_fan(g) ? SourceTriangle() : shape_of(target, g));
-    for (int w : back_triangle_.back()) {
-      target_ring_[w].push_back(int(back_triangle_.size()) - 1);
+    for (int w : back_triangle_.back()) target_ring_[w].push_back(int(back_triangle_.size()) - 1);
+  }
+  for (int w = 0; w < int(target_vertex.size()); ++w) target_point_[w] = target_uv.at(target_vertex[w]);
+  reembed();
+}
+
+void PatchEnergy::reembed() {
+  const PatchLocator onto_source(source_, uv_, face_);
+  point_.resize(vertex_.size());
+  image_.resize(vertex_.size());
+  image_face_.assign(vertex_.size(), -1);
+  active_.assign(vertex_.size(), 0);
+  changed_.assign(vertex_.size(), 1);
+  for (int i = 0; i < int(vertex_.size()); ++i) {
+    point_[i] = uv_.at(vertex_[i]);
+    image_[i] = locate(*target_locator_, target_, point_[i], scale_, -1, &image_face_[i]);
+  }
+  host_.assign(face_.size(), {});
+  back_image_.resize(target_point_.size());
+  // Each target vertex once, in the order its first triangle lists it.
+  std::vector<char> seen(target_point_.size(), 0);
+  for (const auto& corners : back_triangle_)
+    for (int w : corners) {
       if (seen[w]) continue;
       seen[w] = 1;
-      target_point_[w] = target_uv.at(target_vertex[w]);
       const auto [f, weights] = onto_source.locate(target_point_[w]);
-      back_image_[w] = image_in(source, f, weights, 1 / scale);
-      host_[local_face.at(f)].push_back(w);
+      back_image_[w] = image_in(source_, f, weights, 1 / scale_);
+      host_[local_face_.at(f)].push_back(w);
     }
-  }
   // All triangles of the embedding turn the same way (it is bijective); keep it so.
   double total = 0;
   for (int f = 0; f < int(triangle_.size()); ++f) total += signed_area(f, -1, Vec2());

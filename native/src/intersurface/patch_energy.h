@@ -77,6 +77,11 @@ class PatchEnergy {
 
   void apply(int v, const Move& m);
 
+  // The source's patch embedded anew: every point read again from the uv
+  // map, images and hosts located again (what a new PatchEnergy would hold;
+  // the triangles' shapes and the target's side are kept).
+  void reembed();
+
   const std::unordered_map<int, Vec2>& uv() const { return uv_; }
 
   // Per source vertex: how much the map scales area around it, the
@@ -108,6 +113,7 @@ class PatchEnergy {
   std::vector<Image> image_;
   std::vector<int> image_face_;  // per vertex: the target's triangle holding its image
   std::vector<int> face_;                     // per local triangle: its index in the mesh
+  std::unordered_map<int, int> local_face_;   // and back
   std::vector<std::array<int, 3>> triangle_;  // and its local corners
   std::vector<SourceTriangle> shape_;
   std::vector<std::vector<int>> ring_;  // per local vertex: its local triangles

@@ -81,10 +81,9 @@ bool slide(const PathSlide& s, PatchEnergy& first, PatchEnergy& second) {
 // where the target gets too little area, the neighbours pull less and the
 // region opens up. Weights stay positive, so each embedding is bijective;
 // each round is kept only if it lowers both directions' energy.
-template <class MakeEnergy>
 void match_target_areas(const PartitionSide& source, const std::vector<int>& faces, const std::vector<char>& on_path,
                         std::unordered_map<int, Vec2>& uv, const std::unordered_map<int, double>& pull,
-                        int rounds, std::unique_ptr<PatchEnergy>& energy, const MakeEnergy& make_energy) {
+                        int rounds, PatchEnergy& energy) {
   if (rounds <= 0) return;
   std::unordered_map<int, Vec2> points;
   for (const auto& [v, p] : uv)
@@ -94,9 +93,9 @@ void match_target_areas(const PartitionSide& source, const std::vector<int>& fac
   PatchEmbedding::Weights weight = embedding.mean_value_weights();
   for (auto& row : weight)
     for (auto& [u, w] : row) w *= pull.at(u);
-  double ignored = 0, best = energy->total(ignored);
+  double ignored = 0, best = energy.total(ignored);
   for (int round = 0; round < rounds; ++round) {
-    const std::unordered_map<int, double> ratio = energy->area_ratios();
+    const std::unordered_map<int, double> ratio = energy.area_ratios();
     bool lowered = false;
     // The ratio's root first, then its fourth and eighth: a full step can overshoot.
     for (double power = 0.5; power > 0.1 && !lowered; power *= 0.5) {
@@ -106,15 +105,17 @@ void match_target_areas(const PartitionSide& source, const std::vector<int>& fac
       embedding.solve(next_weight);
       std::unordered_map<int, Vec2> kept = uv;
       uv = points;
-      std::unique_ptr<PatchEnergy> next = make_energy();
-      const double e = next->total(ignored);
-      if (e < best) {
-        best = e, energy = std::move(next), weight = std::move(next_weight), lowered = true;
-      } else {
-        uv = std::move(kept);
-      }
+      energy.reembed();
+      const double e = energy.total(ignored);
+      if (e < best)
+        best = e, weight = std::move(next_weight), lowered = true;
+      else
+        uv = std::move(kept);  // the energy follows once no smaller step is left to try
     }
-    if (!lowered) return;
+    if (!lowered) {
+      energy.reembed();
+      return;
+    }
   }
 }
 
@@ -138,14 +139,10 @@ MapOptimization optimize_patch_map(const PartitionSide& source, PatchParameteriz
   parallel_for(
       patches, threads,
       [&](int t) {
-        const auto make_energy = [&] {
-          return std::make_unique<PatchEnergy>(source, source_uv.uv[t], faces[t], target, target_uv.uv[t],
-                                               target_faces[t], scale);
-        };
-        energy[t] = make_energy();
+        energy[t] = std::make_unique<PatchEnergy>(source, source_uv.uv[t], faces[t], target, target_uv.uv[t],
+                                                  target_faces[t], scale);
         before[t] = energy[t]->total(area[t]);
-        match_target_areas(source, faces[t], on_path, source_uv.uv[t], source_uv.pull[t], area_rounds, energy[t],
-                           make_energy);
+        match_target_areas(source, faces[t], on_path, source_uv.uv[t], source_uv.pull[t], area_rounds, *energy[t]);
         for (const auto& [v, p] : source_uv.uv[t])
           if (!on_path[v]) free[t].push_back(v);
         std::sort(free[t].begin(), free[t].end());
