@@ -113,8 +113,8 @@ class PatchEnergy {
   std::vector<Image> image_;
   std::vector<int> image_face_;  // per vertex: the target's triangle holding its image
   std::vector<int> face_;                     // per local triangle: its index in the mesh
-  std::unordered_map<int, int> local_face_;   // and back
   std::vector<std::array<int, 3>> triangle_;  // and its local corners
+  std::unordered_map<int, int> local_face_;   // per mesh triangle of the patch: its local index
   std::vector<SourceTriangle> shape_;
   std::vector<std::vector<int>> ring_;  // per local vertex: its local triangles
   std::vector<std::vector<int>> host_;  // per local triangle: the local target vertices inside it
