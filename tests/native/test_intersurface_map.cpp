@@ -652,6 +652,31 @@ TEST(IntersurfaceMap, AutomaticProgressIsMonotoneAndCancellable) {
   }
 }
 
+// The threads only share out the work: both routes side by side, each
+// direct map from both sides at once, with their parallel loops, give the
+// same map as one thread does.
+TEST(IntersurfaceMap, TheMapDoesNotDependOnTheThreads) {
+  const TriangleMesh a = read_mesh(shared_mesh("genus0/spot_low.obj"));
+  const TriangleMesh b = read_mesh(shared_mesh("genus0/sphere.obj"));
+  std::vector<IntersurfaceResult> maps;
+  for (int threads : {1, 4}) {
+    IntersurfaceOptions options;
+    options.sphere.effort = 0;
+    options.sphere.threads = threads;
+    maps.push_back(intersurface_map(a, b, {}, options));
+  }
+  EXPECT_EQ(maps[0].method, maps[1].method);
+  EXPECT_EQ(maps[0].sphere_median_dirichlet, maps[1].sphere_median_dirichlet);
+  EXPECT_EQ(maps[0].partition_median_dirichlet, maps[1].partition_median_dirichlet);
+  for (const auto side : {&IntersurfaceResult::a_to_b, &IntersurfaceResult::b_to_a}) {
+    ASSERT_EQ((maps[0].*side).size(), (maps[1].*side).size());
+    for (std::size_t v = 0; v < (maps[0].*side).size(); ++v) {
+      ASSERT_EQ((maps[0].*side)[v].triangle, (maps[1].*side)[v].triangle) << "vertex " << v;
+      ASSERT_EQ((maps[0].*side)[v].barycentric, (maps[1].*side)[v].barycentric) << "vertex " << v;
+    }
+  }
+}
+
 TEST(IntersurfaceMap, ZeroFeaturesGetAValidMap) {
   const TriangleMesh a = read_mesh(shared_mesh("genus0/spot_low.obj"));
   const TriangleMesh b = read_mesh(shared_mesh("genus0/sphere.obj"));

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <thread>
@@ -74,6 +75,16 @@ TEST(SideBySide, AnUnexpectedFailureStopsTheOther) {
   EXPECT_THROW(failed_with_error(thrown[0]), std::bad_alloc);
   EXPECT_THROW(failed_with_error(thrown[1]), Cancelled);
   EXPECT_LT(second, 100000);
+}
+
+// Two computations side by side share the caller's worker threads rather
+// than each taking all of them; each keeps at least its own.
+TEST(SideBySide, ThreadsAreSharedBetweenBothSides) {
+  using Split = std::array<int, 2>;
+  EXPECT_EQ(split_threads(1), (Split{1, 1}));
+  EXPECT_EQ(split_threads(2), (Split{1, 1}));
+  EXPECT_EQ(split_threads(3), (Split{2, 1}));
+  EXPECT_EQ(split_threads(16), (Split{8, 8}));
 }
 
 }  // namespace

@@ -29,7 +29,8 @@
 // correspondence where nothing constrains it.
 //
 // Genus 0 pairs can go either way (IntersurfaceOptions::method): by default
-// both maps are computed, side by side on two threads, and the less
+// both maps are computed, side by side on two threads (the direct map's
+// parallel loops taking half of options.sphere.threads), and the less
 // distorted one is kept: the lower summed median, except that medians within
 // 5 % of each other are a tie, broken by fewer folded samples when the counts
 // differ by more than 0.5 % of the triangles, else won by the direct map. The

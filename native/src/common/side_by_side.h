@@ -2,6 +2,7 @@
 // on the caller's, reporting progress as one: on a two-core machine a pair of
 // mostly serial stages finishes in the time of the longer one.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <exception>
 #include <mutex>
@@ -42,6 +43,15 @@ class JointProgress {
   bool stopped_ = false;
   std::mutex mutex_;
 };
+
+// The worker threads `threads` allows, shared by two computations run side
+// by side: the first gets the larger half, each at least one. Each passing
+// the whole count on to its own parallel loops only oversubscribed the
+// cores (cow - horse unfeatured, `--method auto`, the direct map's two
+// sides halved: 89 -> 86 s, peak memory 835 -> 723 MB).
+inline std::array<int, 2> split_threads(int threads) {
+  return {std::max(1, (threads + 1) / 2), std::max(1, threads / 2)};
+}
 
 // Runs first(progress) on a new thread and second(progress) on this one,
 // both to the end, and returns what each threw (null when it returned). A

@@ -182,8 +182,14 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
     through_sphere(progress);
   } else {
     IntersurfaceResult direct = result;
+    // The direct map takes half the threads (its two sides split them
+    // again), the sphere's all: given features, the direct map is spared
+    // its screening and the sphere's map outlasts it, then alone (cow -
+    // horse with 19 features: 60 -> 69 s with half).
+    IntersurfaceOptions halved = options;
+    halved.sphere.threads = split_threads(options.sphere.threads)[0];
     const auto [direct_error, sphere_error] = run_side_by_side(
-        progress, 0.3, [&](const ProgressCallback& part) { map_directly(a, b, direct, options, part); },
+        progress, 0.3, [&](const ProgressCallback& part) { map_directly(a, b, direct, halved, part); },
         through_sphere);
     // Either map kept reports both medians and the sphere's restarts.
     if (!direct_error) result.partition_median_dirichlet = summed_median(direct);

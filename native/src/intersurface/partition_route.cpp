@@ -280,10 +280,13 @@ void map_directly_from(const TriangleMesh& a, const TriangleMesh& b, Intersurfac
   IntersurfaceResult backward = result;
   exchange_sides(backward);
   const auto side = [&](int k) { return partitions ? &partitions->sides[k] : nullptr; };
+  std::array<IntersurfaceOptions, 2> own{options, options};
+  own[0].sphere.threads = split_threads(options.sphere.threads)[0];
+  own[1].sphere.threads = split_threads(options.sphere.threads)[1];
   const auto [forward_error, backward_error] = run_side_by_side(
       progress, 0.5,
-      [&](const ProgressCallback& part) { map_through_patches(a, b, result, options, start, part, side(0)); },
-      [&](const ProgressCallback& part) { map_through_patches(b, a, backward, options, start, part, side(1)); });
+      [&](const ProgressCallback& part) { map_through_patches(a, b, result, own[0], start, part, side(0)); },
+      [&](const ProgressCallback& part) { map_through_patches(b, a, backward, own[1], start, part, side(1)); });
   if (!backward_error) exchange_sides(backward);
   keep_less_distorted(result, forward_error, backward, backward_error, a.triangles.size() + b.triangles.size());
 }

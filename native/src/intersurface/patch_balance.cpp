@@ -2,6 +2,7 @@
 
 #include <Eigen/Sparse>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <unordered_map>
 #include <unordered_set>
@@ -96,6 +97,8 @@ class PathRetrace {
     for (int v : wall) walls_.push_back(side.mesh.position(v));
     std::sort(walls_.begin(), walls_.end(), [](const Vec3& p, const Vec3& q) { return p.x() < q.x(); });
     solve();
+    for (int f : faces_)
+      for (int v : side.mesh.triangles()[f]) corners_.push_back(linear(f, v));
   }
 
   // The level t at which the first patch takes `share` of the two patches' area.
@@ -182,11 +185,17 @@ class PathRetrace {
     return false;
   }
 
-  double value(int f, int v, double t) const {
-    if (is_end(v)) return t;
+  // The function at corner v of triangle f, as {a, b}: a + t b at level t.
+  std::array<double, 2> linear(int f, int v) const {
+    if (is_end(v)) return {0, 1};
     const auto it = interior_.find(v);
-    if (it != interior_.end()) return phi0_[it->second] + t * psi_[it->second];
-    return side_.patch[f] == first_ ? 0 : 1;
+    if (it != interior_.end()) return {phi0_[it->second], psi_[it->second]};
+    return {side_.patch[f] == first_ ? 0.0 : 1.0, 0};
+  }
+
+  double value(int f, int v, double t) const {
+    const auto [a, b] = linear(f, v);
+    return a + t * b;
   }
 
   // Mean-value weights, assembled triangle by triangle, so that a boundary
@@ -228,9 +237,8 @@ class PathRetrace {
   double below(double t) const {
     double under = 0, total = 0;
     for (std::size_t i = 0; i < areas_.size(); ++i) {
-      const Triangle& tri = side_.mesh.triangles()[faces_[i]];
       double d[3];
-      for (int k = 0; k < 3; ++k) d[k] = value(faces_[i], tri[k], t) - t;
+      for (int k = 0; k < 3; ++k) d[k] = corners_[3 * i + k][0] + t * corners_[3 * i + k][1] - t;
       under += areas_[i] * share_below(d), total += areas_[i];
     }
     return under / total;
@@ -277,6 +285,9 @@ class PathRetrace {
   std::array<int, 2> ends_{};
   std::vector<int> faces_;     // the two patches' triangles (after a retrace, the new ones too)
   std::vector<double> areas_;  // per triangle of faces_ before the retrace
+  // Per corner of those triangles, the function as linear() gives it: the
+  // bisections of level_for read it for every triangle some 40 times.
+  std::vector<std::array<double, 2>> corners_;
   std::unordered_map<int, int> interior_;  // mesh vertex -> unknown
   double scale_;                           // the side's typical input triangle size
   std::vector<Vec3> walls_;                // the two patches' other sides (no ends), by x
