@@ -280,9 +280,9 @@ void map_directly_from(const TriangleMesh& a, const TriangleMesh& b, Intersurfac
   IntersurfaceResult backward = result;
   exchange_sides(backward);
   const auto side = [&](int k) { return partitions ? &partitions->sides[k] : nullptr; };
+  const std::array<int, 2> threads = split_threads(options.sphere.threads);
   std::array<IntersurfaceOptions, 2> own{options, options};
-  own[0].sphere.threads = split_threads(options.sphere.threads)[0];
-  own[1].sphere.threads = split_threads(options.sphere.threads)[1];
+  own[0].sphere.threads = threads[0], own[1].sphere.threads = threads[1];
   const auto [forward_error, backward_error] = run_side_by_side(
       progress, 0.5,
       [&](const ProgressCallback& part) { map_through_patches(a, b, result, own[0], start, part, side(0)); },
