@@ -1,12 +1,14 @@
-// Two computations side by side (common/side_by_side.h): both run to the end
-// and report one monotone progress; a failure of one leaves the other's
-// result; a cancellation, from the caller or from either side, stops both.
+// Computations side by side (common/side_by_side.h): two run to the end and
+// report one monotone progress; a failure of one leaves the other's result; a
+// cancellation, from the caller or from either side, stops both. A queue of
+// them starts its tasks in order and stops at a failure.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
 #include <atomic>
 #include <chrono>
+#include <mutex>
 #include <thread>
 #include <vector>
 
@@ -75,6 +77,71 @@ TEST(SideBySide, AnUnexpectedFailureStopsTheOther) {
   EXPECT_THROW(failed_with_error(thrown[0]), std::bad_alloc);
   EXPECT_THROW(failed_with_error(thrown[1]), Cancelled);
   EXPECT_LT(second, 100000);
+}
+
+// A queue of tasks on three threads: each runs once, they start in order,
+// `finished` sees each end, and progress is one monotone sum.
+TEST(SideBySide, TasksQueueInOrder) {
+  std::vector<double> seen;
+  const ProgressCallback progress = [&](double f, const std::string&) {
+    seen.push_back(f);
+    return true;
+  };
+  std::mutex lock;
+  std::vector<int> started, ended;
+  std::array<std::atomic<int>, 7> steps{};
+  const auto thrown = run_tasks(
+      progress, std::vector<double>(7, 1.0 / 7), 3,
+      [&](int k, const ProgressCallback& p) {
+        {
+          std::lock_guard<std::mutex> hold(lock);
+          started.push_back(k);
+        }
+        std::atomic<int> done{0};
+        count(p, 10 + 5 * k, &done);
+        steps[k] = done.load();
+      },
+      [&](int k, const std::exception_ptr& e) {
+        EXPECT_FALSE(e);
+        ended.push_back(k);  // under run_tasks' lock
+      });
+  EXPECT_EQ(started, (std::vector<int>{0, 1, 2, 3, 4, 5, 6}));
+  std::sort(ended.begin(), ended.end());
+  EXPECT_EQ(ended, started);
+  for (int k = 0; k < 7; ++k) {
+    EXPECT_FALSE(thrown[k]);
+    EXPECT_EQ(steps[k], 10 + 5 * k);
+  }
+  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+  EXPECT_NEAR(seen.back(), 1.0, 1e-12);
+}
+
+// A failure other than a cmaps::Error, in a task or in `finished`, stops the
+// queue: the tasks not started throw Cancelled without running; an Error
+// stops nothing.
+TEST(SideBySide, AFailureStopsTheQueue) {
+  for (const bool in_finished : {false, true}) {
+    std::array<std::atomic<bool>, 6> ran{};
+    const auto thrown = run_tasks(
+        {}, std::vector<double>(6, 1.0 / 6), 2,
+        [&](int k, const ProgressCallback& p) {
+          ran[k] = true;
+          if (k == 0) throw InvalidInput("stuck");
+          count(p, k == 2 ? 100000 : 5);
+          if (k == 1 && !in_finished) throw std::bad_alloc();
+        },
+        [&](int k, const std::exception_ptr&) {
+          if (k == 1 && in_finished) throw std::bad_alloc();
+        });
+    EXPECT_TRUE(failed_with_error(thrown[0]));
+    EXPECT_THROW(failed_with_error(thrown[1]), std::bad_alloc);
+    // Task 2 is stopped while it runs, or skipped if it had not started.
+    EXPECT_THROW(failed_with_error(thrown[2]), Cancelled);
+    for (int k = 3; k < 6; ++k) {
+      EXPECT_THROW(failed_with_error(thrown[k]), Cancelled);
+      EXPECT_FALSE(ran[k]) << "task " << k;
+    }
+  }
 }
 
 // Two computations side by side share the caller's worker threads rather

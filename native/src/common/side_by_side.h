@@ -1,32 +1,36 @@
-// Two independent computations run side by side, one on a new thread and one
-// on the caller's, reporting progress as one: on a two-core machine a pair of
-// mostly serial stages finishes in the time of the longer one.
+// Independent computations run side by side, on new threads and the
+// caller's, reporting progress as one: on a two-core machine a pair of
+// mostly serial stages finishes in the time of the longer one, and a queue
+// of them keeps both cores busy until the last.
 #pragma once
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <exception>
 #include <mutex>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "consistent_maps/progress.h"
 
 namespace cmaps {
 
-// The caller's progress fed by two computations: the weighted sum of their
-// fractions, reported under the lock (the callback need not be thread-safe).
-// Once either is told to stop, both are.
+// The caller's progress fed by several computations: the weighted sum of
+// their fractions, reported under the lock (the callback need not be
+// thread-safe). Once any is told to stop, all are.
 class JointProgress {
  public:
-  JointProgress(const ProgressCallback& progress, double first_weight)
-      : progress_(progress), weight_{first_weight, 1 - first_weight} {}
+  JointProgress(const ProgressCallback& progress, std::vector<double> weights)
+      : progress_(progress), weight_(std::move(weights)), fraction_(weight_.size(), 0) {}
 
   ProgressCallback part(int k) {
     return [this, k](double fraction, const std::string& stage) {
       std::lock_guard<std::mutex> lock(mutex_);
       fraction_[k] = fraction;
-      if (!stopped_ && progress_ && !progress_(weight_[0] * fraction_[0] + weight_[1] * fraction_[1], stage))
-        stopped_ = true;
+      double sum = 0;
+      for (std::size_t i = 0; i < weight_.size(); ++i) sum += weight_[i] * fraction_[i];
+      if (!stopped_ && progress_ && !progress_(sum, stage)) stopped_ = true;
       return !stopped_;
     };
   }
@@ -36,10 +40,15 @@ class JointProgress {
     stopped_ = true;
   }
 
+  bool stopped() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return stopped_;
+  }
+
  private:
   const ProgressCallback& progress_;
-  const double weight_[2];
-  double fraction_[2] = {0, 0};
+  const std::vector<double> weight_;
+  std::vector<double> fraction_;
   bool stopped_ = false;
   std::mutex mutex_;
 };
@@ -53,31 +62,63 @@ inline std::array<int, 2> split_threads(int threads) {
   return {std::max(1, (threads + 1) / 2), std::max(1, threads / 2)};
 }
 
-// Runs first(progress) on a new thread and second(progress) on this one,
-// both to the end, and returns what each threw (null when it returned). A
-// cancellation or a failure other than a cmaps::Error stops the other early.
+// Runs task(k, progress) for every k in [0, weights.size()) on `workers`
+// threads (a new one each but one, and the caller's), the tasks taken in
+// order of k as threads come free, each reporting its progress as
+// weights[k] of the whole; then finished(k, thrown), under one lock, as each
+// ends. Returns what each task threw (null when it returned): a task that
+// throws a cancellation or a failure other than a cmaps::Error stops the
+// others early (those not yet started throw Cancelled at once), and so does
+// `finished` throwing anything (kept as its task's).
+template <class Task, class Finished>
+std::vector<std::exception_ptr> run_tasks(const ProgressCallback& progress, std::vector<double> weights, int workers,
+                                          Task&& task, Finished&& finished) {
+  const int count = int(weights.size());
+  JointProgress joint(progress, std::move(weights));
+  std::vector<std::exception_ptr> thrown(count);
+  std::atomic<int> next{0};
+  std::mutex finishing;
+  const auto run = [&] {
+    for (int k; (k = next++) < count;) {
+      try {
+        if (joint.stopped()) throw Cancelled();
+        task(k, joint.part(k));
+      } catch (const Cancelled&) {
+        thrown[k] = std::current_exception();
+        joint.stop();
+      } catch (const Error&) {
+        thrown[k] = std::current_exception();
+      } catch (...) {
+        thrown[k] = std::current_exception();
+        joint.stop();
+      }
+      std::lock_guard<std::mutex> lock(finishing);
+      try {
+        finished(k, thrown[k]);
+      } catch (...) {
+        thrown[k] = std::current_exception();
+        joint.stop();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < std::min(workers, count); ++t) pool.emplace_back(run);
+  run();
+  for (std::thread& t : pool) t.join();
+  return thrown;
+}
+
+// Runs first(progress) and second(progress) side by side, one on a new
+// thread and one on the caller's, both to the end (see run_tasks), and
+// returns what each threw.
 template <class First, class Second>
 std::array<std::exception_ptr, 2> run_side_by_side(const ProgressCallback& progress, double first_weight,
                                                    First&& first, Second&& second) {
-  JointProgress joint(progress, first_weight);
-  std::array<std::exception_ptr, 2> thrown;
-  const auto guarded = [&](int k, auto& compute) {
-    try {
-      compute(joint.part(k));
-    } catch (const Cancelled&) {
-      thrown[k] = std::current_exception();
-      joint.stop();
-    } catch (const Error&) {
-      thrown[k] = std::current_exception();
-    } catch (...) {
-      thrown[k] = std::current_exception();
-      joint.stop();
-    }
-  };
-  std::thread worker([&] { guarded(0, first); });
-  guarded(1, second);
-  worker.join();
-  return thrown;
+  const std::vector<std::exception_ptr> thrown = run_tasks(
+      progress, {first_weight, 1 - first_weight}, 2,
+      [&](int k, const ProgressCallback& part) { k == 0 ? first(part) : second(part); },
+      [](int, const std::exception_ptr&) {});
+  return {thrown[0], thrown[1]};
 }
 
 // True when `thrown` holds a cmaps::Error other than a cancellation, a
