@@ -555,6 +555,34 @@ TEST(IntersurfaceMap, ScreeningKeepsTheStartThatEndsLeastDistorted) {
   expect_exact_features(r, cow, horse);
 }
 
+// The screened start's optimization maps each side through the partition
+// (traced or balanced) its screened map kept, and not through both: here
+// the screening's picks are those the optimized maps make, so the map is the
+// one of optimizing both starts through both partitions.
+TEST(IntersurfaceMap, TheScreenedStartMapsThePartitionsItsScreeningKept) {
+  const TriangleMesh a = read_mesh(shared_mesh("genus0/spot_low.obj"));
+  const TriangleMesh b = read_mesh(shared_mesh("genus0/sphere.obj"));
+  IntersurfaceOptions options;
+  options.method = IntersurfaceMethod::partition;
+  options.sphere.effort = 0;
+  options.starts = 2;
+  const IntersurfaceResult screened = intersurface_map(a, b, {}, options);
+  options.restarts = 2;
+  const IntersurfaceResult both = intersurface_map(a, b, {}, options);
+  ASSERT_EQ(screened.start_median_dirichlet.size(), 2u);
+  ASSERT_EQ(both.restart_median_dirichlet.size(), 2u);
+  EXPECT_TRUE(screened.balanced_patches);
+  EXPECT_EQ(screened.balanced_patches, both.balanced_patches);
+  EXPECT_EQ(screened.moved_b, both.moved_b);
+  for (const auto side : {&IntersurfaceResult::a_to_b, &IntersurfaceResult::b_to_a}) {
+    ASSERT_EQ((screened.*side).size(), (both.*side).size());
+    for (std::size_t v = 0; v < (screened.*side).size(); ++v) {
+      ASSERT_EQ((screened.*side)[v].triangle, (both.*side)[v].triangle) << "vertex " << v;
+      ASSERT_EQ((screened.*side)[v].barycentric, (both.*side)[v].barycentric) << "vertex " << v;
+    }
+  }
+}
+
 TEST(IntersurfaceMap, SphereMethodIsRefusedForGenusOne) {
   const TriangleMesh torus = read_mesh(shared_mesh("higher-genus/torus.obj"));
   IntersurfaceOptions options;

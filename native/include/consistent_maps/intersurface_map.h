@@ -164,7 +164,8 @@ struct IntersurfaceOptions {
   // the plain embeddings pick the fifth: 28.6, 25.7, 18.3, 40.6, 17.7, ...).
   // So this many first pairs are each mapped that far (from both sides,
   // balanced or not), and the least distorted ones optimized
-  // (IntersurfaceResult::start_median_dirichlet). Over the five unfeatured
+  // (IntersurfaceResult::start_median_dirichlet), each side through the
+  // partition (traced or balanced) its screened map kept. Over the five unfeatured
   // pairs of the genus >= 1 benchmark, cow - horse and bunny - gargoyle, the
   // start so picked ended with the lowest summed median of the eight in all
   // seven (the plain embeddings' pick in three; on the kittens' pairs the
@@ -268,7 +269,8 @@ struct IntersurfaceResult {
   bool refitted_a = false, refitted_b = false;
   int steiner_a = 0, steiner_b = 0;
   // Genus >= 1: whether the map went through the partition with balanced
-  // patch areas (IntersurfaceOptions::balance_rounds), and the largest ratio
+  // patch areas (IntersurfaceOptions::balance_rounds; a screened start's
+  // optimization maps only the one its screened map kept), and the largest ratio
   // between a patch's shares of A's and of B's area in the partition used
   // (1: every patch takes the same share of both).
   bool balanced_patches = false;

@@ -206,49 +206,77 @@ PatchPartitions partition_pair(const TriangleMesh& a, const TriangleMesh& b, con
   return made;
 }
 
+// A side's partitions for the direct map (see partition_pair), and which of
+// them a map kept: -1 before any, 0 the traced, 1 the balanced.
+struct SidePartitions {
+  std::shared_ptr<const PatchPartitions> made;
+  int kept = -1;
+};
+
 // The direct map through a consistent partition (every pair of genus >= 1;
 // genus 0 on request or to compare with the sphere): through the partition
 // as traced and through the balanced one (when any path moved), the lower
-// summed median distortion kept, as for genus 0's restarts. With
-// `partitions`, the pair's partitions from `start` (see partition_pair) are
-// taken from there, or traced and left there when it is empty; the maps
-// refine copies of them.
+// summed median distortion kept, as for genus 0's restarts. With `side`,
+// the pair's partitions from `start` are taken from there, or traced and
+// left there when it holds none; the maps refine copies of them. Once a map
+// through both kept one (side->kept), only that one is mapped: the
+// screening's maps, without sweeps, pick the one the optimized maps would
+// (the same on all 43 sides mapped both ways, 22 pairs, BENCHMARKS.md), and each
+// optimized map costs as much as the screening of a start (feline - teapot:
+// 14-22 s without the balancing, 30-33 s with it).
 void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResult& result,
                          const IntersurfaceOptions& options, int start, const ProgressCallback& progress,
-                         std::shared_ptr<const PatchPartitions>* partitions = nullptr) {
-  if (partitions && !*partitions)
-    *partitions = std::make_shared<const PatchPartitions>(partition_pair(a, b, result, options, start, progress));
-  PatchPartitions made = partitions ? **partitions : partition_pair(a, b, result, options, start, progress);
+                         SidePartitions* side = nullptr) {
+  if (side && !side->made)
+    side->made = std::make_shared<const PatchPartitions>(partition_pair(a, b, result, options, start, progress));
+  PatchPartitions made = side ? *side->made : partition_pair(a, b, result, options, start, progress);
   const ClosedMesh &closed_a = made.closed_a, &closed_b = made.closed_b;
   const int given = int(result.features.size()), retraced = made.retraced;
   ConsistentPartition partition = std::move(made.traced), balanced = std::move(made.balanced);
   result.seconds_features = made.seconds_features;
   result.seconds_partition = made.seconds_partition;
-  result.patch_area_ratio = patch_area_ratio(partition);
-  map_partition(partition, closed_a, closed_b, a, b, result, options, slice(progress, 0.6, retraced ? 0.8 : 1));
-  if (retraced > 0) {
+  bool kept_balanced = false;
+  if (retraced > 0 && side && side->kept == 1) {
     IntersurfaceResult moved = result;
-    bool mapped = true;
     try {
-      map_partition(balanced, closed_a, closed_b, a, b, moved, options, slice(progress, 0.8, 1));
+      map_partition(balanced, closed_a, closed_b, a, b, moved, options, slice(progress, 0.6, 1));
+      result = std::move(moved);
+      kept_balanced = true;
     } catch (const Cancelled&) {
       throw;
     } catch (const Error&) {
-      mapped = false;
-    }
-    const bool better = mapped && less_distorted(moved, result, a.triangles.size() + b.triangles.size());
-    // Both maps share the partition and features: their times count once.
-    IntersurfaceResult& kept = better ? moved : result;
-    const double partition_seconds = kept.seconds_partition, feature_seconds = kept.seconds_features;
-    add_stage_seconds(kept, better ? result : moved);
-    kept.seconds_partition = partition_seconds, kept.seconds_features = feature_seconds;
-    if (better) {
-      result = std::move(moved);
-      result.balanced_patches = true;
-      result.patch_area_ratio = patch_area_ratio(balanced);
-      partition = std::move(balanced);
+      // the traced partition serves
     }
   }
+  if (!kept_balanced) {
+    const bool both = retraced > 0 && (!side || side->kept < 0);
+    result.patch_area_ratio = patch_area_ratio(partition);
+    map_partition(partition, closed_a, closed_b, a, b, result, options, slice(progress, 0.6, both ? 0.8 : 1));
+    if (both) {
+      IntersurfaceResult moved = result;
+      bool mapped = true;
+      try {
+        map_partition(balanced, closed_a, closed_b, a, b, moved, options, slice(progress, 0.8, 1));
+      } catch (const Cancelled&) {
+        throw;
+      } catch (const Error&) {
+        mapped = false;
+      }
+      kept_balanced = mapped && less_distorted(moved, result, a.triangles.size() + b.triangles.size());
+      // Both maps share the partition and features: their times count once.
+      IntersurfaceResult& kept = kept_balanced ? moved : result;
+      const double partition_seconds = kept.seconds_partition, feature_seconds = kept.seconds_features;
+      add_stage_seconds(kept, kept_balanced ? result : moved);
+      kept.seconds_partition = partition_seconds, kept.seconds_features = feature_seconds;
+      if (kept_balanced) result = std::move(moved);
+    }
+  }
+  if (kept_balanced) {
+    result.balanced_patches = true;
+    result.patch_area_ratio = patch_area_ratio(balanced);
+    partition = std::move(balanced);
+  }
+  if (side) side->kept = kept_balanced;
 
   const std::vector<int>&fa = partition.sides[0].feature_vertex, &fb = partition.sides[1].feature_vertex;
   result.features.clear();
@@ -265,7 +293,7 @@ void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, Intersurf
 // The partitions of one start from both sides (see map_through_patches).
 struct StartPartitions {
   int start = -1;
-  std::array<std::shared_ptr<const PatchPartitions>, 2> sides;  // from A's side, from B's side
+  std::array<SidePartitions, 2> sides;  // from A's side, from B's side
 };
 
 // Per start tried: the start, both directions' summed mean and median, and folds.
