@@ -71,13 +71,18 @@ Eigen::Matrix3d principal_axes(const TriangleMesh& mesh, const Vec3& center) {
   return solver.eigenvectors().rowwise().reverse();
 }
 
-// Squared, so the searches below compare without a square root per segment.
-double squared_distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
-  const Vec3 d = b - a;
-  const double length = d.squaredNorm();
-  const double t = length > 0 ? std::clamp((p - a).dot(d) / length, 0.0, 1.0) : 0.0;
-  return (p - (a + t * d)).squaredNorm();
-}
+// A segment of a polyline that every step of a search measures against:
+// its direction and squared length computed once. Distances are squared, so
+// the searches compare without a square root per segment.
+struct Segment {
+  Vec3 a, d;
+  double length;
+  Segment(const Vec3& from, const Vec3& to) : a(from), d(to - from), length(d.squaredNorm()) {}
+  double squared_distance(const Vec3& p) const {
+    const double t = length > 0 ? std::clamp((p - a).dot(d) / length, 0.0, 1.0) : 0.0;
+    return (p - (a + t * d)).squaredNorm();
+  }
+};
 
 }  // namespace
 
@@ -173,19 +178,23 @@ std::function<double(const Vec3&)> PathGuide::near(const std::vector<Vec3>& a_pa
   // The nearest segment of a coarse polyline (every step-th point), then the
   // exact distance to A's segments around it: 0 on A's path itself, so a
   // copy of A finds A's own paths.
-  const int step = std::max(1, (int(a_path.size()) + kGuidePoints - 1) / kGuidePoints);
-  return [path = a_path, step, this](const Vec3& on_b) {
+  const int n = int(a_path.size());
+  const int step = std::max(1, (n + kGuidePoints - 1) / kGuidePoints);
+  std::vector<Segment> fine, coarse;
+  for (int i = 0; i + 1 < n; ++i) fine.emplace_back(a_path[i], a_path[i + 1]);
+  for (int i = 0; i + 1 < n; i += step) coarse.emplace_back(a_path[i], a_path[std::min(i + step, n - 1)]);
+  const Vec3 first = n > 0 ? a_path.front() : Vec3::Zero();
+  return [fine = std::move(fine), coarse = std::move(coarse), first, step, this](const Vec3& on_b) {
     const Vec3 p = to_a(on_b);
-    const int n = int(path.size());
-    if (n == 1) return 1 + kPull * (p - path[0]).norm() / scale_a_;
-    int coarse = 0;
+    if (fine.empty()) return 1 + kPull * (p - first).norm() / scale_a_;
+    int near = 0;  // the first fine segment of the nearest coarse one
     double nearest = std::numeric_limits<double>::infinity();
-    for (int i = 0; i + 1 < n; i += step) {
-      const double d = squared_distance_to_segment(p, path[i], path[std::min(i + step, n - 1)]);
-      if (d < nearest) nearest = d, coarse = i;
+    for (int k = 0; k < int(coarse.size()); ++k) {
+      const double d = coarse[k].squared_distance(p);
+      if (d < nearest) nearest = d, near = k * step;
     }
-    for (int i = std::max(0, coarse - step); i + 1 < n && i < coarse + 2 * step; ++i)
-      nearest = std::min(nearest, squared_distance_to_segment(p, path[i], path[i + 1]));
+    for (int i = std::max(0, near - step); i < int(fine.size()) && i < near + 2 * step; ++i)
+      nearest = std::min(nearest, fine[i].squared_distance(p));
     return 1 + kPull * std::sqrt(nearest) / scale_a_;
   };
 }
