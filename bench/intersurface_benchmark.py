@@ -118,7 +118,7 @@ def main():
              "optimum 4). Patch area ratio: the "
              "largest ratio of a patch's shares of A's and B's area in the partition used, \"balanced\" when the map "
              "through the partition with balanced patch areas was kept (partition s includes the balancing, map s "
-             "both maps). Map folds: the map's own (`map_flipped`: A's and B's triangles turned over in their "
+             "both maps; after screening, the one the screened map kept). Map folds: the map's own (`map_flipped`: A's and B's triangles turned over in their "
              "patches' embeddings, B's vertices outside their host triangle of A; 0: bijective as computed), unlike "
              "the flipped samples, folds of the vertex sampling.", "",
              "| pair | faces | features | base triangles | Steiner A / B | partition s | map s | total s | "

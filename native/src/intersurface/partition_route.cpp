@@ -207,9 +207,10 @@ PatchPartitions partition_pair(const TriangleMesh& a, const TriangleMesh& b, con
 }
 
 // A side's partitions for the direct map (see partition_pair), and which of
-// them a map kept: -1 before any, 0 the traced, 1 the balanced.
+// them a map kept: -1 before any, 0 the traced, 1 the balanced (the other
+// one is then let go).
 struct SidePartitions {
-  std::shared_ptr<const PatchPartitions> made;
+  std::shared_ptr<PatchPartitions> made;
   int kept = -1;
 };
 
@@ -227,33 +228,39 @@ struct SidePartitions {
 void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResult& result,
                          const IntersurfaceOptions& options, int start, const ProgressCallback& progress,
                          SidePartitions* side = nullptr) {
-  if (side && !side->made)
-    side->made = std::make_shared<const PatchPartitions>(partition_pair(a, b, result, options, start, progress));
-  PatchPartitions made = side ? *side->made : partition_pair(a, b, result, options, start, progress);
+  SidePartitions own;
+  if (!side) side = &own;
+  if (!side->made)
+    side->made = std::make_shared<PatchPartitions>(partition_pair(a, b, result, options, start, progress));
+  PatchPartitions& made = *side->made;
   const ClosedMesh &closed_a = made.closed_a, &closed_b = made.closed_b;
   const int given = int(result.features.size()), retraced = made.retraced;
-  ConsistentPartition partition = std::move(made.traced), balanced = std::move(made.balanced);
   result.seconds_features = made.seconds_features;
   result.seconds_partition = made.seconds_partition;
+  ConsistentPartition partition;  // the one the map kept, as the map refined it
   bool kept_balanced = false;
-  if (retraced > 0 && side && side->kept == 1) {
+  if (retraced > 0 && side->kept == 1) {
     IntersurfaceResult moved = result;
+    ConsistentPartition balanced = made.balanced;
     try {
       map_partition(balanced, closed_a, closed_b, a, b, moved, options, slice(progress, 0.6, 1));
       result = std::move(moved);
+      partition = std::move(balanced);
       kept_balanced = true;
     } catch (const Cancelled&) {
       throw;
     } catch (const Error&) {
-      // the traced partition serves
+      made = partition_pair(a, b, result, options, start, progress);  // the traced partition serves, let go before
     }
   }
   if (!kept_balanced) {
-    const bool both = retraced > 0 && (!side || side->kept < 0);
+    const bool both = retraced > 0 && side->kept < 0;
+    partition = made.traced;
     result.patch_area_ratio = patch_area_ratio(partition);
     map_partition(partition, closed_a, closed_b, a, b, result, options, slice(progress, 0.6, both ? 0.8 : 1));
     if (both) {
       IntersurfaceResult moved = result;
+      ConsistentPartition balanced = made.balanced;
       bool mapped = true;
       try {
         map_partition(balanced, closed_a, closed_b, a, b, moved, options, slice(progress, 0.8, 1));
@@ -268,15 +275,15 @@ void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, Intersurf
       const double partition_seconds = kept.seconds_partition, feature_seconds = kept.seconds_features;
       add_stage_seconds(kept, kept_balanced ? result : moved);
       kept.seconds_partition = partition_seconds, kept.seconds_features = feature_seconds;
-      if (kept_balanced) result = std::move(moved);
+      if (kept_balanced) result = std::move(moved), partition = std::move(balanced);
     }
   }
   if (kept_balanced) {
     result.balanced_patches = true;
-    result.patch_area_ratio = patch_area_ratio(balanced);
-    partition = std::move(balanced);
+    result.patch_area_ratio = patch_area_ratio(partition);
   }
-  if (side) side->kept = kept_balanced;
+  side->kept = kept_balanced;
+  (kept_balanced ? made.traced : made.balanced) = ConsistentPartition();
 
   const std::vector<int>&fa = partition.sides[0].feature_vertex, &fb = partition.sides[1].feature_vertex;
   result.features.clear();
