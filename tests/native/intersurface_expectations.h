@@ -36,6 +36,18 @@ inline void expect_exact_features(const IntersurfaceResult& r, const TriangleMes
   }
 }
 
+// Two maps of one pair are the same: every vertex's image, both ways, on the
+// same triangle with the same weights, bit for bit.
+inline void expect_same_images(const IntersurfaceResult& x, const IntersurfaceResult& y) {
+  for (const auto side : {&IntersurfaceResult::a_to_b, &IntersurfaceResult::b_to_a}) {
+    ASSERT_EQ((x.*side).size(), (y.*side).size());
+    for (std::size_t v = 0; v < (x.*side).size(); ++v) {
+      ASSERT_EQ((x.*side)[v].triangle, (y.*side)[v].triangle) << "vertex " << v;
+      ASSERT_EQ((x.*side)[v].barycentric, (y.*side)[v].barycentric) << "vertex " << v;
+    }
+  }
+}
+
 // The point of `mesh`'s triangle t next to its corner k, as corner images
 // take it: kCornerNudge of the way from the corner towards the other two.
 inline Vec3 nudged_corner(const TriangleMesh& mesh, int t, int k) {

@@ -22,6 +22,7 @@ namespace {
 using test::corner_offset;
 using test::diagonal;
 using test::expect_exact_features;
+using test::expect_same_images;
 using test::expect_valid_points;
 using test::shared_mesh;
 
@@ -574,13 +575,7 @@ TEST(IntersurfaceMap, TheScreenedStartMapsThePartitionsItsScreeningKept) {
   EXPECT_TRUE(screened.balanced_patches);
   EXPECT_EQ(screened.balanced_patches, both.balanced_patches);
   EXPECT_EQ(screened.moved_b, both.moved_b);
-  for (const auto side : {&IntersurfaceResult::a_to_b, &IntersurfaceResult::b_to_a}) {
-    ASSERT_EQ((screened.*side).size(), (both.*side).size());
-    for (std::size_t v = 0; v < (screened.*side).size(); ++v) {
-      ASSERT_EQ((screened.*side)[v].triangle, (both.*side)[v].triangle) << "vertex " << v;
-      ASSERT_EQ((screened.*side)[v].barycentric, (both.*side)[v].barycentric) << "vertex " << v;
-    }
-  }
+  expect_same_images(screened, both);
 }
 
 TEST(IntersurfaceMap, SphereMethodIsRefusedForGenusOne) {
@@ -699,13 +694,7 @@ TEST(IntersurfaceMap, TheMapDoesNotDependOnTheThreads) {
   EXPECT_EQ(maps[0].method, maps[1].method);
   EXPECT_EQ(maps[0].sphere_median_dirichlet, maps[1].sphere_median_dirichlet);
   EXPECT_EQ(maps[0].partition_median_dirichlet, maps[1].partition_median_dirichlet);
-  for (const auto side : {&IntersurfaceResult::a_to_b, &IntersurfaceResult::b_to_a}) {
-    ASSERT_EQ((maps[0].*side).size(), (maps[1].*side).size());
-    for (std::size_t v = 0; v < (maps[0].*side).size(); ++v) {
-      ASSERT_EQ((maps[0].*side)[v].triangle, (maps[1].*side)[v].triangle) << "vertex " << v;
-      ASSERT_EQ((maps[0].*side)[v].barycentric, (maps[1].*side)[v].barycentric) << "vertex " << v;
-    }
-  }
+  expect_same_images(maps[0], maps[1]);
 }
 
 TEST(IntersurfaceMap, ZeroFeaturesGetAValidMap) {

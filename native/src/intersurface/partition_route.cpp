@@ -222,13 +222,16 @@ struct SidePartitions {
 // left there when it holds none; the maps refine copies of them. Once a map
 // through both kept one (side->kept), only that one is mapped: the
 // screening's maps, without sweeps, pick the one the optimized maps would
-// (the same on all 43 sides mapped both ways, 22 pairs, BENCHMARKS.md), and each
+// (on all 43 sides of 22 unfeatured pairs measured; on fertility's stretched
+// copy it picks the other, whose optimized median lies within
+// less_distorted's 5 % of the one kept before, BENCHMARKS.md), and each
 // optimized map costs as much as the screening of a start (feline - teapot:
 // 14-22 s without the balancing, 30-33 s with it).
 void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResult& result,
                          const IntersurfaceOptions& options, int start, const ProgressCallback& progress,
                          SidePartitions* side = nullptr) {
-  SidePartitions own;
+  SidePartitions own;  // without `side`: nothing reuses the partitions, so the maps take them
+  const bool reused = side != nullptr;
   if (!side) side = &own;
   if (!side->made)
     side->made = std::make_shared<PatchPartitions>(partition_pair(a, b, result, options, start, progress));
@@ -241,7 +244,7 @@ void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, Intersurf
   bool kept_balanced = false;
   if (retraced > 0 && side->kept == 1) {
     IntersurfaceResult moved = result;
-    ConsistentPartition balanced = made.balanced;
+    ConsistentPartition balanced = made.balanced;  // only a reused side's optimization maps it alone
     try {
       map_partition(balanced, closed_a, closed_b, a, b, moved, options, slice(progress, 0.6, 1));
       result = std::move(moved);
@@ -255,12 +258,12 @@ void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, Intersurf
   }
   if (!kept_balanced) {
     const bool both = retraced > 0 && side->kept < 0;
-    partition = made.traced;
+    partition = reused ? made.traced : std::move(made.traced);
     result.patch_area_ratio = patch_area_ratio(partition);
     map_partition(partition, closed_a, closed_b, a, b, result, options, slice(progress, 0.6, both ? 0.8 : 1));
     if (both) {
       IntersurfaceResult moved = result;
-      ConsistentPartition balanced = made.balanced;
+      ConsistentPartition balanced = reused ? made.balanced : std::move(made.balanced);
       bool mapped = true;
       try {
         map_partition(balanced, closed_a, closed_b, a, b, moved, options, slice(progress, 0.8, 1));
@@ -320,7 +323,7 @@ struct StartTrials {
 // start). A start whose sides both fail is skipped; when all fail, the first
 // error is thrown. `partitions` holds the partitions of its start when that
 // is among `starts` (they are not traced again), and is left holding those
-// of the start kept.
+// of the start kept (null: no partitions are kept).
 //
 // The sides of all starts queue for the threads (each side's own loops get
 // an equal share of them), so a side that ends early does not leave its
@@ -329,7 +332,7 @@ struct StartTrials {
 // the best so far is kept, so memory holds a few maps and not one per start.
 void map_directly_best_of(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResult& result,
                           const IntersurfaceOptions& options, const std::vector<int>& starts, StartTrials& tried,
-                          StartPartitions& partitions, const ProgressCallback& progress) {
+                          StartPartitions* partitions, const ProgressCallback& progress) {
   const std::size_t samples = a.triangles.size() + b.triangles.size();
   struct Start {
     std::array<IntersurfaceResult, 2> sides;  // traced on A first, on B first
@@ -341,7 +344,7 @@ void map_directly_best_of(const TriangleMesh& a, const TriangleMesh& b, Intersur
   for (std::size_t k = 0; k < starts.size(); ++k) {
     trial[k].sides = {result, result};
     exchange_sides(trial[k].sides[1]);
-    trial[k].made = partitions.start == starts[k] ? partitions : StartPartitions{starts[k], {}};
+    trial[k].made = partitions && partitions->start == starts[k] ? *partitions : StartPartitions{starts[k], {}};
   }
   const int count = 2 * int(starts.size());
   // At least two: the sides of one start always ran side by side.
@@ -372,14 +375,15 @@ void map_directly_best_of(const TriangleMesh& a, const TriangleMesh& b, Intersur
     if (!found || less_distorted(map, best, samples)) best = std::move(map), kept = std::move(start.made);
     found = true;
   };
+  const auto side = [&](Start& start, int k) { return partitions ? &start.made.sides[k] : nullptr; };
   const auto thrown = run_tasks(
       progress, std::vector<double>(count, 1.0 / count), workers,
       [&](int k, const ProgressCallback& part) {
         Start& start = trial[k / 2];
         if (k % 2 == 0)
-          map_through_patches(a, b, start.sides[0], own, start.made.start, part, &start.made.sides[0]);
+          map_through_patches(a, b, start.sides[0], own, start.made.start, part, side(start, 0));
         else
-          map_through_patches(b, a, start.sides[1], own, start.made.start, part, &start.made.sides[1]);
+          map_through_patches(b, a, start.sides[1], own, start.made.start, part, side(start, 1));
       },
       [&](int k, const std::exception_ptr& thrown) {
         trial[k / 2].thrown[k % 2] = thrown;
@@ -392,7 +396,7 @@ void map_directly_best_of(const TriangleMesh& a, const TriangleMesh& b, Intersur
   for (const std::exception_ptr& e : thrown) failed_with_error(e);  // rethrows a cancellation or failure
   if (!found) std::rethrow_exception(error);
   result = std::move(best);
-  partitions = std::move(kept);
+  if (partitions) *partitions = std::move(kept);
 }
 
 }  // namespace
@@ -402,8 +406,7 @@ void map_directly(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResu
   const bool automatic = result.features.empty() && check_mesh(a).closed() && check_mesh(b).closed();
   if (!automatic) {
     StartTrials ignored;
-    StartPartitions none;
-    map_directly_best_of(a, b, result, options, {0}, ignored, none, progress);
+    map_directly_best_of(a, b, result, options, {0}, ignored, nullptr, progress);
     return;
   }
   const std::size_t samples = a.triangles.size() + b.triangles.size();
@@ -424,7 +427,7 @@ void map_directly(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResu
     quick.cross_sweeps = 0;
     IntersurfaceResult ignored = result;
     screening = 0.4;
-    map_directly_best_of(a, b, ignored, quick, starts, screened, partitions, slice(progress, 0, screening));
+    map_directly_best_of(a, b, ignored, quick, starts, screened, &partitions, slice(progress, 0, screening));
     // The least distorted of those left, options.restarts times (the tie
     // rule is no ordering to sort by).
     std::vector<int> left(screened.starts.size());
@@ -441,7 +444,7 @@ void map_directly(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResu
     }
   }
   StartTrials optimized;
-  map_directly_best_of(a, b, result, options, starts, optimized, partitions, slice(progress, screening, 1));
+  map_directly_best_of(a, b, result, options, starts, optimized, &partitions, slice(progress, screening, 1));
   result.start_median_dirichlet = screened.medians;
   if (optimized.starts.size() > 1) {
     result.restart_dirichlet = std::move(optimized.energies);
