@@ -118,9 +118,10 @@ def main():
              "optimum 4). Patch area ratio: the "
              "largest ratio of a patch's shares of A's and B's area in the partition used, \"balanced\" when the map "
              "through the partition with balanced patch areas was kept (partition s includes the balancing, map s "
-             "both maps; after screening, the one the screened map kept). Map folds: the map's own (`map_flipped`: A's and B's triangles turned over in their "
-             "patches' embeddings, B's vertices outside their host triangle of A; 0: bijective as computed), unlike "
-             "the flipped samples, folds of the vertex sampling.", "",
+             "both maps; after screening, the one the screened map kept). Map folds: the map's own (`map_flipped`: "
+             "A's and B's triangles turned over in their patches' embeddings, B's vertices outside their host "
+             "triangle of A; 0: bijective as computed), unlike the flipped samples, folds of the vertex sampling.",
+             "",
              "| pair | faces | features | base triangles | Steiner A / B | partition s | map s | total s | "
              "symmetric Dirichlet A->B / B->A | median | flipped samples A->B / B->A | map folds | patch area ratio | "
              "note |",

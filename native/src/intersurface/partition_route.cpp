@@ -244,7 +244,7 @@ void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, Intersurf
   bool kept_balanced = false;
   if (retraced > 0 && side->kept == 1) {
     IntersurfaceResult moved = result;
-    ConsistentPartition balanced = made.balanced;  // only a reused side's optimization maps it alone
+    ConsistentPartition balanced = made.balanced;  // (side->kept is set on reused sides only)
     try {
       map_partition(balanced, closed_a, closed_b, a, b, moved, options, slice(progress, 0.6, 1));
       result = std::move(moved);
