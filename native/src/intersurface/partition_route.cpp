@@ -241,19 +241,27 @@ void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, Intersurf
   result.seconds_features = made.seconds_features;
   result.seconds_partition = made.seconds_partition;
   ConsistentPartition partition;  // the one the map kept, as the map refined it
-  bool kept_balanced = false;
-  if (retraced > 0 && side->kept == 1) {
-    IntersurfaceResult moved = result;
-    ConsistentPartition balanced = made.balanced;  // (side->kept is set on reused sides only)
+  // The map through the balanced partition, into `moved`: false when it fails.
+  const auto map_balanced = [&](ConsistentPartition& balanced, IntersurfaceResult& moved, double from) {
     try {
-      map_partition(balanced, closed_a, closed_b, a, b, moved, options, slice(progress, 0.6, 1));
-      result = std::move(moved);
-      partition = std::move(balanced);
-      kept_balanced = true;
+      map_partition(balanced, closed_a, closed_b, a, b, moved, options, slice(progress, from, 1));
+      return true;
     } catch (const Cancelled&) {
       throw;
     } catch (const Error&) {
-      made = partition_pair(a, b, result, options, start, progress);  // the traced partition serves, let go before
+      return false;
+    }
+  };
+  bool kept_balanced = false;
+  if (retraced > 0 && side->kept == 1) {
+    IntersurfaceResult moved = result;
+    ConsistentPartition balanced = std::move(made.balanced);
+    if (map_balanced(balanced, moved, 0.6)) {
+      result = std::move(moved);
+      partition = std::move(balanced);
+      kept_balanced = true;
+    } else {
+      made = partition_pair(a, b, result, options, start, progress);  // the traced partition, let go before, serves
     }
   }
   if (!kept_balanced) {
@@ -264,14 +272,7 @@ void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, Intersurf
     if (both) {
       IntersurfaceResult moved = result;
       ConsistentPartition balanced = reused ? made.balanced : std::move(made.balanced);
-      bool mapped = true;
-      try {
-        map_partition(balanced, closed_a, closed_b, a, b, moved, options, slice(progress, 0.8, 1));
-      } catch (const Cancelled&) {
-        throw;
-      } catch (const Error&) {
-        mapped = false;
-      }
+      const bool mapped = map_balanced(balanced, moved, 0.8);
       kept_balanced = mapped && less_distorted(moved, result, a.triangles.size() + b.triangles.size());
       // Both maps share the partition and features: their times count once.
       IntersurfaceResult& kept = kept_balanced ? moved : result;
