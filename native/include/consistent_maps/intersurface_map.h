@@ -147,10 +147,10 @@ struct IntersurfaceOptions {
   // starting parameterization: with few features the spread is wide
   // (sets/cactus 0 -> 3, 8 features: ground-truth error 2.2-7.9 % over six
   // starts), and the energy ranks the maps nearly like the true error does.
-  // The direct map (any genus) is always traced and optimized from both
-  // sides, the less distorted kept; for a pair given no features and
-  // without holes, restarts optimize the maps from that many of the
-  // `starts` below (the least distorted before optimization).
+  // The direct map (any genus) is traced and optimized from both sides,
+  // the less distorted kept; for a pair given no features and without
+  // holes, restarts optimize the maps from that many of the `starts` below
+  // (the least distorted before optimization), each from one side.
   int restarts = 1;
   // The direct map of a pair given no features and without holes: its
   // automatic first pair (A's k-th vertex of a farthest-point spread from
@@ -163,13 +163,15 @@ struct IntersurfaceOptions {
   // before the local sweeps (27.0, 23.4, 16.1, 33.7, 17.1, 39.7, 16.2, 20.3;
   // the plain embeddings pick the fifth: 28.6, 25.7, 18.3, 40.6, 17.7, ...).
   // So this many first pairs are each mapped that far (from both sides,
-  // balanced or not), and the least distorted ones optimized
-  // (IntersurfaceResult::start_median_dirichlet), each side through the
-  // partition (traced or balanced) its screened map kept. Over the five unfeatured
-  // pairs of the genus >= 1 benchmark, cow - horse and bunny - gargoyle, the
-  // start so picked ended with the lowest summed median of the eight in all
-  // seven (the plain embeddings' pick in three; on the kittens' pairs the
-  // lower medians came with more folded samples, BENCHMARKS.md).
+  // balanced and as traced, see max_traced_ratio), and the least distorted
+  // ones optimized (IntersurfaceResult::start_median_dirichlet), each from
+  // the side and through the partition its screened map kept (the optimized
+  // maps rank the sides alike on 21 of 22 pairs, BENCHMARKS.md, and one side
+  // takes all threads). Over the five unfeatured pairs of the genus >= 1
+  // benchmark, cow - horse and bunny - gargoyle, the start so picked ended
+  // with the lowest summed median of the eight in all seven (the plain
+  // embeddings' pick in three; on the kittens' pairs the lower medians came
+  // with more folded samples, BENCHMARKS.md).
   // Eight rather than four: the five featureless pairs of the genus >= 1
   // benchmark, summed medians -7 % and folded samples -28 % (eight - skull
   // and cup - skull find better first pairs, the kittens' maps move by under
@@ -196,6 +198,19 @@ struct IntersurfaceOptions {
   // the map through the moved partition is kept only if its summed median
   // symmetric Dirichlet energy is lower. 0: the partition as traced.
   int balance_rounds = 4;
+  // Genus >= 1: the partition as traced is not mapped, only the balanced
+  // one, when the traced one's patches take shares of the two surfaces'
+  // areas more than this factor apart (the largest over its patches): such
+  // maps do not compete. Screening the 22 unfeatured pairs of BENCHMARKS.md
+  // (session 52), the map through the partition as traced beat the balanced
+  // one's, or came within 5 %, on 28 of 349 sides; above this ratio it would
+  // have been kept on 6, all of starts the screening dropped (summed medians
+  // 1.7 to 4.8 times the start kept's). Of the benchmarks' optimized maps,
+  // the one kept through the partition as traced with the largest ratio had
+  // 11.9 (cow - horse with 19 pairs, directly). Not mapping the others spares
+  // about 40 % of the screening's maps on the feline's pairs. Infinity: both
+  // always mapped.
+  double max_traced_ratio = 12;
 };
 
 // How far the point of a triangle next to a corner (corner images) lies

@@ -217,7 +217,9 @@ struct SidePartitions {
 // The direct map through a consistent partition (every pair of genus >= 1;
 // genus 0 on request or to compare with the sphere): through the partition
 // as traced and through the balanced one (when any path moved), the lower
-// summed median distortion kept, as for genus 0's restarts. With `side`,
+// summed median distortion kept, as for genus 0's restarts; through the
+// balanced one alone when the traced one is too unbalanced
+// (IntersurfaceOptions::max_traced_ratio). With `side`,
 // the pair's partitions from `start` are taken from there, or traced and
 // left there when it holds none; the maps refine copies of them. Once a map
 // through both kept one (side->kept), only that one is mapped: the
@@ -252,26 +254,33 @@ void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, Intersurf
       return false;
     }
   };
+  // The screening maps them again for the start it keeps; every other map can take them.
+  const bool mapped_again = reused && side->kept < 0;
+  const auto take = [&](ConsistentPartition& p) { return mapped_again ? p : std::move(p); };
+  // The balanced partition alone once a map kept it, or when the traced one
+  // is too unbalanced to compete.
+  const bool balanced_only = retraced > 0 && (side->kept == 1 || (side->kept < 0 && patch_area_ratio(made.traced) >
+                                                                                          options.max_traced_ratio));
   bool kept_balanced = false;
-  if (retraced > 0 && side->kept == 1) {
+  if (balanced_only) {
     IntersurfaceResult moved = result;
-    ConsistentPartition balanced = std::move(made.balanced);
+    ConsistentPartition balanced = take(made.balanced);
     if (map_balanced(balanced, moved, 0.6)) {
       result = std::move(moved);
       partition = std::move(balanced);
       kept_balanced = true;
-    } else {
+    } else if (made.traced.sides.empty()) {
       made = partition_pair(a, b, result, options, start, progress);  // the traced partition, let go before, serves
     }
   }
   if (!kept_balanced) {
-    const bool both = retraced > 0 && side->kept < 0;
-    partition = reused ? made.traced : std::move(made.traced);
+    const bool both = retraced > 0 && side->kept < 0 && !balanced_only;
+    partition = take(made.traced);
     result.patch_area_ratio = patch_area_ratio(partition);
     map_partition(partition, closed_a, closed_b, a, b, result, options, slice(progress, 0.6, both ? 0.8 : 1));
     if (both) {
       IntersurfaceResult moved = result;
-      ConsistentPartition balanced = reused ? made.balanced : std::move(made.balanced);
+      ConsistentPartition balanced = take(made.balanced);
       const bool mapped = map_balanced(balanced, moved, 0.8);
       kept_balanced = mapped && less_distorted(moved, result, a.triangles.size() + b.triangles.size());
       // Both maps share the partition and features: their times count once.
@@ -307,11 +316,13 @@ struct StartPartitions {
   std::array<SidePartitions, 2> sides;  // from A's side, from B's side
 };
 
-// Per start tried: the start, both directions' summed mean and median, and folds.
+// Per start tried: the start, both directions' summed mean and median,
+// folds, and the side its map kept (0: traced and optimized from A's side,
+// 1: from B's).
 struct StartTrials {
   std::vector<int> starts;
   std::vector<double> energies, medians;
-  std::vector<int> folds;
+  std::vector<int> folds, sides;
 };
 
 // Direct maps from each of `starts` (see map_through_patches), each traced
@@ -321,8 +332,9 @@ struct StartTrials {
 // one way, 0.6 % the other), and the map kept does not depend on which mesh
 // is called A. The least distorted start is kept in `result` and each one's
 // summed mean, median and folds appended to `tried` (in order, with its
-// start). A start whose sides both fail is skipped; when all fail, the first
-// error is thrown. `partitions` holds the partitions of its start when that
+// start). `sides`, when given, names per start the one side to map
+// (-1: both). A start whose sides all fail is skipped; when all fail, the
+// first error is thrown. `partitions` holds the partitions of its start when that
 // is among `starts` (they are not traced again), and is left holding those
 // of the start kept (null: no partitions are kept).
 //
@@ -334,23 +346,29 @@ struct StartTrials {
 // the best so far is kept, so memory holds a few maps and not one per start.
 void map_directly_best_of(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResult& result,
                           const IntersurfaceOptions& options, const std::vector<int>& starts, StartTrials& tried,
-                          StartPartitions* partitions, const ProgressCallback& progress) {
+                          StartPartitions* partitions, const ProgressCallback& progress,
+                          const std::vector<int>& sides = {}) {
   const std::size_t samples = a.triangles.size() + b.triangles.size();
   struct Start {
     std::array<IntersurfaceResult, 2> sides;  // traced on A first, on B first
     std::array<std::exception_ptr, 2> thrown;
     StartPartitions made;
+    int only = -1;  // the one side mapped, -1: both
     int ended = 0;
   };
   std::vector<Start> trial(starts.size());
+  std::vector<std::array<int, 2>> tasks;  // start, side
   for (std::size_t k = 0; k < starts.size(); ++k) {
     trial[k].sides = {result, result};
     exchange_sides(trial[k].sides[1]);
     trial[k].made = partitions && partitions->start == starts[k] ? *partitions : StartPartitions{starts[k], {}};
+    trial[k].only = sides.empty() ? -1 : sides[k];
+    for (int s = 0; s < 2; ++s)
+      if (trial[k].only < 0 || trial[k].only == s) tasks.push_back({int(k), s});
   }
-  const int count = 2 * int(starts.size());
-  // At least two: the sides of one start always ran side by side.
-  const int workers = std::max(2, std::min(options.sphere.threads, count));
+  const int count = int(tasks.size());
+  // At least two when there are two: the sides of one start always ran side by side.
+  const int workers = std::max(std::min(2, count), std::min(options.sphere.threads, count));
   IntersurfaceOptions own = options;
   own.sphere.threads = std::max(1, options.sphere.threads / workers);
 
@@ -363,7 +381,12 @@ void map_directly_best_of(const TriangleMesh& a, const TriangleMesh& b, Intersur
     IntersurfaceResult &map = start.sides[0], &backward = start.sides[1];
     if (!start.thrown[1]) exchange_sides(backward);
     try {
-      keep_less_distorted(map, start.thrown[0], backward, start.thrown[1], samples);
+      if (start.only < 0) {
+        keep_less_distorted(map, start.thrown[0], backward, start.thrown[1], samples);
+      } else {
+        if (start.thrown[start.only]) std::rethrow_exception(start.thrown[start.only]);
+        if (start.only == 1) map = std::move(backward);
+      }
     } catch (const Cancelled&) {
       throw;
     } catch (const Error&) {
@@ -374,23 +397,27 @@ void map_directly_best_of(const TriangleMesh& a, const TriangleMesh& b, Intersur
     tried.energies.push_back(map.distortion_a_to_b.symmetric_dirichlet + map.distortion_b_to_a.symmetric_dirichlet);
     tried.medians.push_back(summed_median(map));
     tried.folds.push_back(summed_folds(map));
+    tried.sides.push_back(map.moved_b);
     if (!found || less_distorted(map, best, samples)) best = std::move(map), kept = std::move(start.made);
     found = true;
   };
   const auto side = [&](Start& start, int k) { return partitions ? &start.made.sides[k] : nullptr; };
   const auto thrown = run_tasks(
       progress, std::vector<double>(count, 1.0 / count), workers,
-      [&](int k, const ProgressCallback& part) {
-        Start& start = trial[k / 2];
-        if (k % 2 == 0)
+      [&](int task, const ProgressCallback& part) {
+        const auto [k, s] = tasks[task];
+        Start& start = trial[k];
+        if (s == 0)
           map_through_patches(a, b, start.sides[0], own, start.made.start, part, side(start, 0));
         else
           map_through_patches(b, a, start.sides[1], own, start.made.start, part, side(start, 1));
       },
-      [&](int k, const std::exception_ptr& thrown) {
-        trial[k / 2].thrown[k % 2] = thrown;
-        ++trial[k / 2].ended;
-        for (; judged < trial.size() && trial[judged].ended == 2; ++judged) {
+      [&](int task, const std::exception_ptr& thrown) {
+        const auto [k, s] = tasks[task];
+        trial[k].thrown[s] = thrown;
+        ++trial[k].ended;
+        const auto done = [](const Start& start) { return start.ended == (start.only < 0 ? 2 : 1); };
+        for (; judged < trial.size() && done(trial[judged]); ++judged) {
           judge(trial[judged]);
           trial[judged] = Start();  // its maps and partitions are no longer needed
         }
@@ -416,6 +443,7 @@ void map_directly(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResu
   std::iota(starts.begin(), starts.end(), 0);
   StartTrials screened;
   StartPartitions partitions;  // the screened start kept: its optimization does not trace them again
+  std::vector<int> sides;      // per start optimized: the side its screened map kept
   double screening = 0;
   if (options.optimize_rounds > 0 && int(starts.size()) > options.restarts) {
     // Screened with the patches' areas matched to the other mesh's (the
@@ -431,7 +459,11 @@ void map_directly(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResu
     screening = 0.4;
     map_directly_best_of(a, b, ignored, quick, starts, screened, &partitions, slice(progress, 0, screening));
     // The least distorted of those left, options.restarts times (the tie
-    // rule is no ordering to sort by).
+    // rule is no ordering to sort by), each optimized from the side its
+    // screened map kept: the optimized maps rank the sides alike (21 of the
+    // 22 unfeatured pairs of BENCHMARKS.md, session 52; torus - elk's other
+    // side ends 5 % less distorted), and one side takes both threads instead
+    // of each side one.
     std::vector<int> left(screened.starts.size());
     std::iota(left.begin(), left.end(), 0);
     starts.clear();
@@ -442,11 +474,13 @@ void map_directly(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResu
                            samples))
           best = k;
       starts.push_back(screened.starts[*best]);
+      sides.push_back(screened.sides[*best]);
       left.erase(best);
     }
+    if (!sides.empty() && partitions.start == starts[0]) partitions.sides[1 - sides[0]] = SidePartitions();
   }
   StartTrials optimized;
-  map_directly_best_of(a, b, result, options, starts, optimized, &partitions, slice(progress, screening, 1));
+  map_directly_best_of(a, b, result, options, starts, optimized, &partitions, slice(progress, screening, 1), sides);
   result.start_median_dirichlet = screened.medians;
   if (optimized.starts.size() > 1) {
     result.restart_dirichlet = std::move(optimized.energies);
