@@ -221,7 +221,8 @@ struct SidePartitions {
 // balanced one alone when the traced one is too unbalanced
 // (IntersurfaceOptions::max_traced_ratio). With `side`,
 // the pair's partitions from `start` are taken from there, or traced and
-// left there when it holds none; the maps refine copies of them. Once a map
+// left there when it holds none; the maps refine copies of them while the
+// screening will map them again, else the partitions themselves. Once a map
 // through both kept one (side->kept), only that one is mapped: the
 // screening's maps, without sweeps, pick the one the optimized maps would
 // (on all 43 sides of 22 unfeatured pairs measured; on fertility's stretched
