@@ -5,6 +5,12 @@
 // left unturned), and the step factor 1 on A's path itself.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "consistent_maps/mesh_check.h"
 #include "consistent_maps/mesh_io.h"
 #include "intersurface/path_guide.h"
 #include "test_support.h"
@@ -95,6 +101,53 @@ TEST(PathGuide, KeepsMeshesPosedAlikeUnturned) {
     for (size_t i = 0; i < a.vertices.size(); ++i) mean += (guide.to_a(b.vertices[i]) - a.vertices[i]).norm();
     EXPECT_LT(mean / double(a.vertices.size()), 0.025 * test::diagonal(a)) << name_b;
   }
+}
+
+
+// The step factor's scan (started where the last point's nearest coarse
+// segment lay, segments whose ball lies farther skipped) gives what the
+// plain scan gives, to the last bit: the first nearest of the 64 coarse
+// segments, then the nearest fine segment around it. A wavy path of 1,000
+// points on the cow, asked about its own points (ties between segments
+// meeting there), points walking along it, and points in random order.
+TEST(PathGuide, TheStepFactorIsThePlainScans) {
+  const TriangleMesh a = read_mesh(test::shared_mesh("genus0/cow.off"));
+  const PathGuide guide({}, {}, a, a);
+  std::vector<Vec3> path;
+  for (int i = 0; i < 1000; ++i) {
+    const double s = i / 999.0;
+    path.push_back(Vec3(s, 0.2 * std::sin(40 * s), 0.1 * std::cos(25 * s)));
+  }
+  const auto squared_distance = [](const Vec3& p, const Vec3& from, const Vec3& to) {
+    const Vec3 d = to - from;
+    const double length = d.squaredNorm();
+    const double t = length > 0 ? std::clamp((p - from).dot(d) / length, 0.0, 1.0) : 0.0;
+    return (p - (from + t * d)).squaredNorm();
+  };
+  const int n = int(path.size()), step = (n + 63) / 64;
+  const double scale = std::sqrt(surface_area(a));
+  const auto plain = [&](const Vec3& on_b) {
+    const Vec3 p = guide.to_a(on_b);
+    int near = 0;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int i = 0; i + 1 < n; i += step) {
+      const double d = squared_distance(p, path[i], path[std::min(i + step, n - 1)]);
+      if (d < nearest) nearest = d, near = i;
+    }
+    for (int i = std::max(0, near - step); i + 1 < n && i < near + 2 * step; ++i)
+      nearest = std::min(nearest, squared_distance(p, path[i], path[i + 1]));
+    return 1 + 4 * std::sqrt(nearest) / scale;  // path_guide.h: kPull = 4
+  };
+  std::vector<Vec3> asked = path;
+  for (int i = 0; i < 3000; ++i) {
+    const double s = i / 2999.0;
+    asked.push_back(Vec3(s, 0.2 * std::sin(40 * s) + 0.05, 0.1 * std::cos(25 * s) - 0.03));
+  }
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> x(-0.5, 1.5), yz(-0.6, 0.6);
+  for (int i = 0; i < 3000; ++i) asked.push_back(Vec3(x(random), yz(random), yz(random)));
+  const auto factor = guide.near(path);
+  for (std::size_t i = 0; i < asked.size(); ++i) ASSERT_EQ(factor(asked[i]), plain(asked[i])) << "point " << i;
 }
 
 }  // namespace

@@ -8,7 +8,6 @@
 
 #include <array>
 #include <functional>
-#include <unordered_set>
 #include <vector>
 
 #include "consistent_maps/mesh.h"
@@ -32,7 +31,7 @@ class Side {
   EditableMesh mesh;
   int first_fan;              // triangles refined from input triangles at or past this fill a hole
   std::vector<char> blocked;  // features and path vertices
-  std::unordered_set<int> path_edges;
+  EdgeSet path_edges;
   std::vector<int> feature;
   std::vector<std::vector<int>> paths;
 

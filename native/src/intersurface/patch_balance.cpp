@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <unordered_map>
 #include <unordered_set>
 
 #include "common/diagonally_dominant_lu.h"
@@ -83,16 +82,19 @@ class PathRetrace {
       : side_(side), edge_(edge), first_(first), second_(second), scale_(scale) {
     const auto& path = side.paths[edge];
     ends_ = {path.front(), path.back()};
-    std::unordered_set<int> boundary, wall;
+    std::vector<char> boundary(side.mesh.vertex_count(), 0);
     for (int e = 0; e < int(side.paths.size()); ++e)
-      if (e != edge) boundary.insert(side.paths[e].begin(), side.paths[e].end());
+      if (e != edge)
+        for (int v : side.paths[e]) boundary[v] = 1;
+    unknown_.assign(side.mesh.vertex_count(), -1);
+    std::unordered_set<int> wall;
     for (int f = 0; f < int(side.patch.size()); ++f)
       if (side.patch[f] == first || side.patch[f] == second) {
         faces_.push_back(f);
         areas_.push_back(triangle_area(side, f));
         for (int v : side.mesh.triangles()[f])
-          if (!boundary.count(v) && !is_end(v) && !interior_.count(v)) interior_.emplace(v, int(interior_.size()));
-          else if (boundary.count(v) && !is_end(v)) wall.insert(v);
+          if (!boundary[v] && !is_end(v) && unknown_[v] < 0) unknown_[v] = unknowns_++;
+          else if (boundary[v] && !is_end(v)) wall.insert(v);
       }
     for (int v : wall) walls_.push_back(side.mesh.position(v));
     std::sort(walls_.begin(), walls_.end(), [](const Vec3& p, const Vec3& q) { return p.x() < q.x(); });
@@ -115,7 +117,7 @@ class PathRetrace {
   // curve does not run from one end to the other.
   bool retrace(double t) {
     std::vector<Crossing> crossings;
-    if (interior_.empty() || !trace(t, crossings) || pinches(crossings)) return false;
+    if (unknowns_ == 0 || !trace(t, crossings) || pinches(crossings)) return false;
     const int triangles_before = int(side_.mesh.triangles().size());
     std::unordered_set<int> level{ends_[0], ends_[1]};
     std::vector<int> path{ends_[0]};
@@ -168,6 +170,7 @@ class PathRetrace {
   };
 
   bool is_end(int v) const { return v == ends_[0] || v == ends_[1]; }
+  int unknown(int v) const { return v < int(unknown_.size()) ? unknown_[v] : -1; }
 
   // Whether a path through the crossings would come too near another path (kPinch).
   bool pinches(const std::vector<Crossing>& crossings) const {
@@ -188,8 +191,8 @@ class PathRetrace {
   // The function at corner v of triangle f, as {a, b}: a + t b at level t.
   std::array<double, 2> linear(int f, int v) const {
     if (is_end(v)) return {0, 1};
-    const auto it = interior_.find(v);
-    if (it != interior_.end()) return {phi0_[it->second], psi_[it->second]};
+    const int i = unknown(v);
+    if (i >= 0) return {phi0_[i], psi_[i]};
     return {side_.patch[f] == first_ ? 0.0 : 1.0, 0};
   }
 
@@ -201,24 +204,23 @@ class PathRetrace {
   // Mean-value weights, assembled triangle by triangle, so that a boundary
   // vertex takes its value from the triangle that sees it.
   void solve() {
-    const int n = int(interior_.size());
+    const int n = unknowns_;
     if (n == 0) return;
     std::vector<Eigen::Triplet<double>> entries;
     Eigen::VectorXd rhs0 = Eigen::VectorXd::Zero(n), rhs_psi = Eigen::VectorXd::Zero(n);
     for (int f : faces_) {
       const Triangle& t = side_.mesh.triangles()[f];
       for (int k = 0; k < 3; ++k) {
-        const auto it = interior_.find(t[k]);
-        if (it == interior_.end()) continue;
-        const int i = it->second;
+        const int i = unknown(t[k]);
+        if (i < 0) continue;
         const Vec3& p = side_.mesh.position(t[k]);
         const Vec3 u = side_.mesh.position(t[(k + 1) % 3]) - p, w = side_.mesh.position(t[(k + 2) % 3]) - p;
         const double half = std::tan(0.5 * std::atan2(u.cross(w).norm(), u.dot(w)));
         for (const auto& [v, d] : {std::pair<int, Vec3>{t[(k + 1) % 3], u}, {t[(k + 2) % 3], w}}) {
           const double weight = half / std::max(d.norm(), 1e-300);
           entries.emplace_back(i, i, weight);
-          const auto j = interior_.find(v);
-          if (j != interior_.end()) entries.emplace_back(i, j->second, -weight);
+          const int j = unknown(v);
+          if (j >= 0) entries.emplace_back(i, j, -weight);
           else if (is_end(v)) rhs_psi[i] += weight;
           else rhs0[i] += weight * (side_.patch[f] == first_ ? 0 : 1);
         }
@@ -288,7 +290,10 @@ class PathRetrace {
   // Per corner of those triangles, the function as linear() gives it: the
   // bisections of level_for read it for every triangle some 40 times.
   std::vector<std::array<double, 2>> corners_;
-  std::unordered_map<int, int> interior_;  // mesh vertex -> unknown
+  // Per mesh vertex (as the retrace found the mesh), its unknown: the two
+  // patches' interior vertices, the old path's too; -1 for the others.
+  std::vector<int> unknown_;
+  int unknowns_ = 0;
   double scale_;                           // the side's typical input triangle size
   std::vector<Vec3> walls_;                // the two patches' other sides (no ends), by x
   Eigen::VectorXd phi0_, psi_;

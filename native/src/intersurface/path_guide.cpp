@@ -77,10 +77,19 @@ Eigen::Matrix3d principal_axes(const TriangleMesh& mesh, const Vec3& center) {
 struct Segment {
   Vec3 a, d;
   double length;
-  Segment(const Vec3& from, const Vec3& to) : a(from), d(to - from), length(d.squaredNorm()) {}
+  Vec3 centre;  // of the smallest ball holding the segment
+  double radius;
+  Segment(const Vec3& from, const Vec3& to)
+      : a(from), d(to - from), length(d.squaredNorm()), centre(a + 0.5 * d), radius(0.5 * d.norm()) {}
   double squared_distance(const Vec3& p) const {
     const double t = length > 0 ? std::clamp((p - a).dot(d) / length, 0.0, 1.0) : 0.0;
     return (p - (a + t * d)).squaredNorm();
+  }
+  // Whether the segment surely lies farther from p than `reach` (no
+  // division; the margin is far above rounding).
+  bool beyond(const Vec3& p, double reach) const {
+    const double r = (1 + 1e-6) * (radius + reach);
+    return (p - centre).squaredNorm() > r * r;
   }
 };
 
@@ -184,15 +193,23 @@ std::function<double(const Vec3&)> PathGuide::near(const std::vector<Vec3>& a_pa
   for (int i = 0; i + 1 < n; ++i) fine.emplace_back(a_path[i], a_path[i + 1]);
   for (int i = 0; i + 1 < n; i += step) coarse.emplace_back(a_path[i], a_path[std::min(i + step, n - 1)]);
   const Vec3 first = n > 0 ? a_path.front() : Vec3::Zero();
-  return [fine = std::move(fine), coarse = std::move(coarse), first, step, this](const Vec3& on_b) {
+  // A search asks about neighbours one after the other: the scan starts at
+  // the coarse segment nearest the last point asked about and skips those
+  // whose ball lies beyond the nearest so far, and ties go to the first
+  // segment, as a plain scan in order finds it (the same paths, faster).
+  return [fine = std::move(fine), coarse = std::move(coarse), first, step, hint = 0,
+          this](const Vec3& on_b) mutable {
     const Vec3 p = to_a(on_b);
     if (fine.empty()) return 1 + kPull * (p - first).norm() / scale_a_;
-    int near = 0;  // the first fine segment of the nearest coarse one
-    double nearest = std::numeric_limits<double>::infinity();
+    int best = hint;  // the first nearest coarse segment
+    double nearest = coarse[best].squared_distance(p), reach = std::sqrt(nearest);
     for (int k = 0; k < int(coarse.size()); ++k) {
+      if (k == hint || coarse[k].beyond(p, reach)) continue;
       const double d = coarse[k].squared_distance(p);
-      if (d < nearest) nearest = d, near = k * step;
+      if (d < nearest || (d == nearest && k < best)) nearest = d, best = k, reach = std::sqrt(d);
     }
+    hint = best;
+    const int near = best * step;  // the first fine segment of the nearest coarse one
     for (int i = std::max(0, near - step); i < int(fine.size()) && i < near + 2 * step; ++i)
       nearest = std::min(nearest, fine[i].squared_distance(p));
     return 1 + kPull * std::sqrt(nearest) / scale_a_;

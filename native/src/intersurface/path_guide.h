@@ -34,6 +34,7 @@ class PathGuide {
   Vec3 to_a(const Vec3& on_b) const { return transform_ * on_b; }
 
   // The step factor for B's search near the polyline `a_path` (A positions).
+  // It remembers where its last point lay, so one thread calls it at a time.
   std::function<double(const Vec3&)> near(const std::vector<Vec3>& a_path) const;
 
   // Index of the point of `b_points` whose image in A's frame is nearest `a_point`.

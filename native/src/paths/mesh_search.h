@@ -5,9 +5,9 @@
 #pragma once
 #include <functional>
 #include <unordered_map>
-#include <unordered_set>
 #include <vector>
 
+#include "paths/edge_set.h"
 #include "paths/editable_mesh.h"
 
 namespace cmaps {
@@ -25,7 +25,7 @@ struct Sector {
 
 struct SearchRules {
   const std::vector<char>* blocked = nullptr;        // vertices no path may pass through
-  const std::unordered_set<int>* closed_edges = nullptr;  // edges whose midpoints are off limits
+  const EdgeSet* closed_edges = nullptr;             // edges whose midpoints are off limits
   const Sector* leave = nullptr;   // how the path may leave the source (nullptr = freely)
   const Sector* enter = nullptr;   // how it may enter the target
   bool midpoints = false;

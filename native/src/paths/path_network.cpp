@@ -6,7 +6,6 @@
 #include <map>
 #include <numeric>
 #include <unordered_map>
-#include <unordered_set>
 
 #include "common/ring.h"
 #include "consistent_maps/errors.h"
@@ -274,7 +273,7 @@ class Tracer {
   std::vector<double> length_;
   std::vector<int> component_;
   std::vector<std::unordered_map<int, int>> first_step_;  // feature -> (neighbour feature -> first path vertex)
-  std::unordered_set<int> path_edges_;
+  EdgeSet path_edges_;
   int unconnected_extremities_ = 0;
   int components_ = 0, prelaid_ = 0;
   std::vector<char> done_;
