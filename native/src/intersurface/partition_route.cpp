@@ -380,7 +380,7 @@ void map_directly_best_of(const TriangleMesh& a, const TriangleMesh& b, Intersur
   std::size_t judged = 0;
   const auto judge = [&](Start& start) {
     IntersurfaceResult &map = start.sides[0], &backward = start.sides[1];
-    if (!start.thrown[1]) exchange_sides(backward);
+    if (start.only != 0 && !start.thrown[1]) exchange_sides(backward);  // side 1 mapped: back to A -> B
     try {
       if (start.only < 0) {
         keep_less_distorted(map, start.thrown[0], backward, start.thrown[1], samples);
