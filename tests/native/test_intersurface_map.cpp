@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <fstream>
 #include <numeric>
+#include <tuple>
 
 #include "consistent_maps/errors.h"
 #include "consistent_maps/intersurface_map.h"
@@ -741,6 +742,31 @@ TEST(IntersurfaceMap, DifferentGenusIsRefusedNamingBoth) {
   EXPECT_THROW(intersurface_map(torus, spot, {}), TopologyError);
   EXPECT_EQ(error_of(torus, spot, {}), "A has genus 1, B has genus 0; an inter-surface map needs equal genus");
   EXPECT_EQ(error_of(spot, torus, {}), "A has genus 0, B has genus 1; an inter-surface map needs equal genus");
+}
+
+// Genus 0 with a hole on one mesh only: every method names both counts (the
+// automatic and sphere methods used to pass on the sphere's refusal of the
+// holed mesh alone, "needs a closed surface").
+TEST(IntersurfaceMap, DifferentHoleCountsAreRefusedNamingBoth) {
+  const TriangleMesh spot = read_mesh(shared_mesh("genus0/spot_low.obj"));
+  TriangleMesh holed_copy = spot;
+  holed_copy.triangles.erase(holed_copy.triangles.begin());
+  const TriangleMesh& holed = holed_copy;
+  for (IntersurfaceMethod method :
+       {IntersurfaceMethod::automatic, IntersurfaceMethod::sphere, IntersurfaceMethod::partition}) {
+    IntersurfaceOptions options;
+    options.method = method;
+    for (const auto& [a, b, message] :
+         {std::tuple{&holed, &spot, "A has 1 hole, B has 0; an inter-surface map needs as many holes on both"},
+          {&spot, &holed, "A has 0 holes, B has 1; an inter-surface map needs as many holes on both"}}) {
+      try {
+        intersurface_map(*a, *b, {}, options);
+        ADD_FAILURE() << method_name(method) << ": no error";
+      } catch (const TopologyError& e) {
+        EXPECT_EQ(std::string(e.what()), message) << method_name(method);
+      }
+    }
+  }
 }
 
 TEST(IntersurfaceMap, NonManifoldIsRefused) {

@@ -365,6 +365,9 @@ def test_errors(native):
     torus, spot = native.read_mesh(str(TORUS)), native.read_mesh(str(SPOT))
     with pytest.raises(native.InvalidMeshError, match="A has genus 1, B has genus 0; an inter-surface map needs equal genus"):
         native.intersurface_map(torus, spot, [])
+    # The default method (sphere and partition side by side) names both hole counts too.
+    with pytest.raises(native.InvalidMeshError, match="A has 1 hole, B has 0; an inter-surface map needs as many holes"):
+        native.intersurface_map(holed(spot, [0]), spot, [])
     with pytest.raises(native.InvalidMeshError, match=r"feature pair 1: vertex 99999 is out of range for B"):
         native.intersurface_map(spot, spot, [[0, 0], [1, 99999], [2, 2]])
     with pytest.raises(ValueError, match=r"feature_pairs must have shape \(k, 2\)"):

@@ -25,9 +25,9 @@ namespace {
 
 // The genus of a mesh an inter-surface map takes; the error naming the mesh
 // (`name` is "A" or "B") and its first defect otherwise.
-int checked_genus(const TriangleMesh& mesh, const std::string& name) {
+MeshReport checked_topology(const TriangleMesh& mesh, const std::string& name) {
   try {
-    return require_pair_map_topology(mesh).genus;
+    return require_pair_map_topology(mesh);
   } catch (const TopologyError& e) {
     throw TopologyError(name + ": " + e.what());
   } catch (const InvalidInput& e) {
@@ -147,10 +147,17 @@ IntersurfaceResult intersurface_map(const TriangleMesh& a, const TriangleMesh& b
     r.seconds = seconds_since(start);
     return r;
   }
-  const int genus_a = checked_genus(a, "A"), genus_b = checked_genus(b, "B");
+  const MeshReport topology_a = checked_topology(a, "A"), topology_b = checked_topology(b, "B");
+  const int genus_a = topology_a.genus, genus_b = topology_b.genus;
   if (genus_a != genus_b)
     throw TopologyError("A has genus " + std::to_string(genus_a) + ", B has genus " + std::to_string(genus_b) +
                         "; an inter-surface map needs equal genus");
+  // Before either method runs: the sphere's would refuse the holed mesh
+  // alone, naming neither the pair nor the counts.
+  const int holes_a = topology_a.boundary_loops, holes_b = topology_b.boundary_loops;
+  if (holes_a != holes_b)
+    throw TopologyError("A has " + std::to_string(holes_a) + (holes_a == 1 ? " hole" : " holes") + ", B has " +
+                        std::to_string(holes_b) + "; an inter-surface map needs as many holes on both");
   check_features(features, a, b);
   IntersurfaceResult result;
   result.genus = genus_a;
