@@ -320,6 +320,31 @@ TEST(CrossPatchMap, VerticesCrossPathsAndTheMapNearsTheTruth) {
   }
 }
 
+TEST(CrossPatchMap, TheHalvesMoveSideBySideToTheSameMap) {
+  // A's two halves move on two threads: what they read and write must not
+  // meet, so the map is the one a single thread gives (half 0, then half
+  // 1), to the last bit, in both turns.
+  CactusPoses poses;
+  ConsistentPartition& p = poses.p;
+  PatchParameterization uv_a = parameterize_patches(p.sides[0], p);
+  const PatchParameterization uv_b = parameterize_patches(p.sides[1], p);
+  optimize_patch_map(p.sides[0], uv_a, p.sides[1], uv_b, 20, 2);
+  const auto crossed = [&](int threads) {
+    CrossPatchMap a_moves(p, uv_a, uv_b);
+    const CrossPatchOptimization first = a_moves.optimize(20, {}, threads);
+    CrossPatchMap b_moves(p, 1, glue_patches(p.sides[1], uv_b), a_moves.moved());
+    const CrossPatchOptimization second = b_moves.optimize(20, {}, threads);
+    EXPECT_GT(first.crossings, 100);
+    EXPECT_GT(second.crossings, 100);
+    EXPECT_EQ(b_moves.turned_triangles(), 0);
+    EXPECT_EQ(b_moves.stray_hosts(), 0);
+    return std::tuple{first.moves, first.energy_after, a_moves.moved().home, a_moves.moved().point, second.moves,
+                      second.energy_after, b_moves.moved().home, b_moves.moved().point};
+  };
+  const auto one = crossed(1);
+  for (int run = 0; run < 3; ++run) EXPECT_TRUE(crossed(2) == one) << "run " << run;
+}
+
 TEST(CrossPatchMap, TheFixedSideCrossesNext) {
   // After A's vertices crossed B's paths, B's cross A's against A's glued
   // embedding as it is then: the same map at the start (both directions),

@@ -1,6 +1,7 @@
 #include "intersurface/cross_patch_optimization.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 
@@ -355,23 +356,81 @@ void CrossPatchMap::apply(int v, const Move& move) {
   }
 }
 
-CrossPatchOptimization CrossPatchMap::optimize(int sweeps, const std::function<bool(double)>& keep_going) {
+namespace {
+
+// Per vertex of the side: 0 below the median along the longest axis of its
+// bounding box, 1 above.
+std::vector<char> halves(const PartitionSide& side) {
+  const int n = side.mesh.vertex_count();
+  std::vector<char> half(n, 0);
+  if (n == 0) return half;
+  Vec3 low = side.mesh.position(0), high = low;
+  for (int v = 0; v < n; ++v) low = low.cwiseMin(side.mesh.position(v)), high = high.cwiseMax(side.mesh.position(v));
+  int axis;
+  (high - low).maxCoeff(&axis);
+  std::vector<std::pair<double, int>> along(n);
+  for (int v = 0; v < n; ++v) along[v] = {side.mesh.position(v)[axis], v};
+  std::nth_element(along.begin(), along.begin() + n / 2, along.end());
+  for (auto k = along.begin() + n / 2; k != along.end(); ++k) half[k->second] = 1;
+  return half;
+}
+
+}  // namespace
+
+bool CrossPatchMap::moves_alone(int v, const std::vector<char>& half) const {
+  const char h = half[v];
+  const auto in_half = [&](const Triangle& t) { return half[t[0]] == h && half[t[1]] == h && half[t[2]] == h; };
+  const auto hosted_in_half = [&](const Triangle& t) {
+    return std::all_of(t.begin(), t.end(), [&](int w) { return in_half(a_.mesh.triangles()[host_[w].face]); });
+  };
+  const std::vector<int>& faces = a_.mesh.faces_of(v);
+  if (!std::all_of(faces.begin(), faces.end(), [&](int f) { return in_half(a_.mesh.triangles()[f]); })) return false;
+  for (int s : split_a_.of_vertex[v])
+    if (!in_half(split_a_.corners[s])) return false;
+  for (int f : faces)
+    for (int w : hosted_[f]) {
+      for (int g : b_.mesh.faces_of(w))
+        if (!hosted_in_half(b_.mesh.triangles()[g])) return false;
+      for (int s : split_b_.of_vertex[w])
+        if (!hosted_in_half(split_b_.corners[s])) return false;
+    }
+  return true;
+}
+
+CrossPatchOptimization CrossPatchMap::optimize(int sweeps, const std::function<bool(double)>& keep_going,
+                                               int threads) {
   CrossPatchOptimization result;
   result.energy_before = total_energy();
   // Each sweep visits the vertices whose ring changed in the sweep before (all, at first).
   const int n = a_.mesh.vertex_count();
-  std::vector<char> active(n, 1), next(n, 0);
+  const std::vector<char> half = halves(a_);
+  std::vector<char> active(n, 1), next(n, 0), alone(n, 0);
+  struct Count {
+    int moved = 0, crossings = 0;
+  };
+  // A vertex's move, its ring marked for the next sweep.
+  const auto visit = [&](int v, Count& count) {
+    const int home = a_glued_.home(v);
+    if (!improve(v)) return;
+    ++count.moved;
+    count.crossings += a_glued_.home(v) != home;
+    for (int f : a_.mesh.faces_of(v))
+      for (int u : a_.mesh.triangles()[f]) next[u] = 1;
+  };
   for (int sweep = 0; sweep < sweeps; ++sweep) {
+    parallel_for(n, threads, [&](std::size_t v) { alone[v] = active[v] && moves_alone(int(v), half); }, 1024);
+    std::array<Count, 3> count;  // half 0's, half 1's, the rest's
+    parallel_for(
+        2, threads,
+        [&](std::size_t h) {
+          for (int v = 0; v < n; ++v)
+            if (alone[v] && half[v] == char(h)) visit(v, count[h]);
+        },
+        1);
+    for (int v = 0; v < n; ++v)
+      if (active[v] && !alone[v]) visit(v, count[2]);
     int moved = 0;
-    for (int v = 0; v < n; ++v) {
-      if (!active[v]) continue;
-      const int home = a_glued_.home(v);
-      if (!improve(v)) continue;
-      ++moved;
-      result.crossings += a_glued_.home(v) != home;
-      for (int f : a_.mesh.faces_of(v))
-        for (int u : a_.mesh.triangles()[f]) next[u] = 1;
-    }
+    for (const Count& c : count) moved += c.moved, result.crossings += c.crossings;
     result.moves += moved;
     if (moved == 0) break;
     if (keep_going && !keep_going(double(sweep + 1) / sweeps)) throw Cancelled();

@@ -62,7 +62,12 @@ class CrossPatchMap {
   // Sweeps over A's vertices (after the first, those whose ring changed)
   // until one moves nothing or `sweeps` are done. `keep_going(fraction
   // done)` is asked after each sweep; false throws Cancelled.
-  CrossPatchOptimization optimize(int sweeps, const std::function<bool(double)>& keep_going = {});
+  // A sweep moves A's two halves (split across A's longest axis) side by
+  // side on two of `threads`, each half's vertices whose moves read and
+  // write nothing of the other's (moves_alone), then the others in order;
+  // the halves are independent, so the map is the same for any `threads`.
+  CrossPatchOptimization optimize(int sweeps, const std::function<bool(double)>& keep_going = {},
+                                  int threads = 1);
 
   // The invariants, counted (both 0 unless broken): A's and B's triangles
   // that turn the wrong way in the plane of their corners (glued_side.h), and
@@ -117,6 +122,14 @@ class CrossPatchMap {
   // ring's layout puts inside a triangle can lie outside it developed
   // around that triangle.
   bool breaks_invariants(int v, const Move& move);
+  // Whether v, in `half` of A (per vertex of A: 0 or 1), moves reading and
+  // writing only what moves of that half's vertices change: its ring's
+  // triangles and its cut triangles have all corners in the half, and B's
+  // vertices in its ring share B's triangles and cut triangles only with
+  // vertices of B hosted in triangles of A whose corners are all in the
+  // half. Moves keep B's vertices in the mover's ring, so a sweep of such
+  // vertices of one half never touches what one of the other half reads.
+  bool moves_alone(int v, const std::vector<char>& half) const;
   bool gather_ring(int v, Ring& ring) const;
   // v moved to q of its ring's plane: the move, with its energy (inf when
   // not allowed); with `gradient`, also the energy's derivative by q.

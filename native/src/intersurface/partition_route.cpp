@@ -88,9 +88,12 @@ void map_partition(ConsistentPartition& partition, const ClosedMesh& closed_a, c
     const int moving = turn % 2;
     across = std::make_unique<CrossPatchMap>(partition, moving, glued[moving], glued[1 - moving]);
     if (across_paths)
-      across->optimize(options.cross_sweeps, [&](double done) {
-        return !progress || progress(0.3 + 0.4 * (turn + done) / turns, "optimizing the map across the paths");
-      });
+      across->optimize(
+          options.cross_sweeps,
+          [&](double done) {
+            return !progress || progress(0.3 + 0.4 * (turn + done) / turns, "optimizing the map across the paths");
+          },
+          options.sphere.threads);
     glued[moving] = across->moved();
   }
   result.seconds_optimize = seconds_since(stage);
