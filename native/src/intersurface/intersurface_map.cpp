@@ -23,8 +23,8 @@
 namespace cmaps {
 namespace {
 
-// The genus of a mesh an inter-surface map takes; the error naming the mesh
-// (`name` is "A" or "B") and its first defect otherwise.
+// The topology (genus, holes) of a mesh an inter-surface map takes; the
+// error naming the mesh (`name` is "A" or "B") and its first defect otherwise.
 MeshReport checked_topology(const TriangleMesh& mesh, const std::string& name) {
   try {
     return require_pair_map_topology(mesh);
