@@ -44,9 +44,7 @@ std::vector<HoleRim> pair_hole_rims(const ClosedMesh& a, const ClosedMesh& b,
                                     const std::vector<std::array<int, 2>>& pairs, bool b_turned,
                                     const PathGuide& guide) {
   const int holes = int(a.loops.size());
-  if (int(b.loops.size()) != holes)
-    throw InvalidInput("A has " + std::to_string(holes) + " holes, B has " + std::to_string(b.loops.size()) +
-                       "; an inter-surface map needs as many holes on both");
+  if (int(b.loops.size()) != holes) throw Error("internal error: the pair's hole counts differ");
   std::vector<std::vector<int>> loops_b = b.loops;
   if (b_turned)
     for (auto& loop : loops_b) std::reverse(loop.begin() + 1, loop.end());

@@ -26,10 +26,11 @@ struct HoleRim {
 // those holes and is one of their rim features; other holes pair by nearest
 // centres in A's frame (`guide`), their rims start at A's loop start and B's
 // vertex nearest it. Rims with fewer than 3 features get more in the middle
-// of their longest gaps, at the same fraction of the gap on both. Throws
-// InvalidInput when the hole counts differ, a pair joins a rim vertex to a
-// vertex off every rim, two pairs join one hole to two, or pairs run around
-// a rim in different orders.
+// of their longest gaps, at the same fraction of the gap on both. The hole
+// counts must be equal (intersurface_map refuses other pairs up front).
+// Throws InvalidInput when a pair joins a rim vertex to a vertex off every
+// rim, two pairs join one hole to two, or pairs run around a rim in
+// different orders.
 std::vector<HoleRim> pair_hole_rims(const ClosedMesh& a, const ClosedMesh& b,
                                     const std::vector<std::array<int, 2>>& pairs, bool b_turned,
                                     const PathGuide& guide);
