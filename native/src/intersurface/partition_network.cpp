@@ -208,9 +208,7 @@ std::vector<int> Side::regions(int& count) const {
     while (!stack.empty()) {
       const int f = stack.back();
       stack.pop_back();
-      const Triangle& t = mesh.triangles()[f];
-      for (int k = 0; k < 3; ++k) {
-        const int e = mesh.edge(t[k], t[(k + 1) % 3]);
+      for (int e : mesh.face_edges(f)) {
         if (path_edges.count(e)) continue;
         const auto& two = mesh.edge_faces(e);
         const int g = two[0] == f ? two[1] : two[0];

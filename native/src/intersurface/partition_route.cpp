@@ -8,7 +8,6 @@
 #include "common/side_by_side.h"
 #include "common/stage_clock.h"
 #include "consistent_maps/errors.h"
-#include "consistent_maps/mesh_check.h"
 #include "intersurface/consistent_partition.h"
 #include "intersurface/cross_patch_optimization.h"
 #include "intersurface/farthest_points.h"
@@ -145,11 +144,40 @@ void map_partition(ConsistentPartition& partition, const ClosedMesh& closed_a, c
   result.seconds_measure = seconds_since(stage);
 }
 
+// What every start's partitions of a pair share, for both orders of the
+// pair: each mesh with its holes closed (checked and fanned once, not per
+// start and side: 32 times over feline - teapot's screening), and, for a
+// pair given no features and without holes, each mesh's pairless alignment
+// onto the other (PathGuide), which picks the partner of a start's vertex.
+class PairMeshes {
+ public:
+  // The pair in one order (first 0: A's paths traced first; 1: B's).
+  struct Ordered {
+    const TriangleMesh &a, &b;
+    const ClosedMesh &closed_a, &closed_b;
+    const PathGuide* unpaired;  // null: the starts bring their own pairs (features, holes or genus 0)
+  };
+
+  PairMeshes(const TriangleMesh& a, const TriangleMesh& b, const IntersurfaceResult& result)
+      : meshes_{&a, &b}, closed_{close_holes(a, /*any_genus=*/true), close_holes(b, /*any_genus=*/true)} {
+    if (result.genus > 0 && result.features.empty() && closed_[0].loops.empty())
+      unpaired_ = {PathGuide({}, {}, a, b), PathGuide({}, {}, b, a)};
+  }
+
+  Ordered order(int first) const {
+    return {*meshes_[first], *meshes_[1 - first], closed_[first], closed_[1 - first],
+            unpaired_.empty() ? nullptr : &unpaired_[first]};
+  }
+
+ private:
+  std::array<const TriangleMesh*, 2> meshes_;
+  std::array<ClosedMesh, 2> closed_;
+  std::vector<PathGuide> unpaired_;  // per order, when used
+};
+
 // A pair's consistent partition for the direct map, as traced and with its
-// paths moved to balance the patches' areas (`retraced` paths moved), and
-// the holes' fans closing both meshes.
+// paths moved to balance the patches' areas (`retraced` paths moved).
 struct PatchPartitions {
-  ClosedMesh closed_a, closed_b;
   ConsistentPartition traced, balanced;
   int retraced = 0;
   double seconds_features = 0, seconds_partition = 0;
@@ -157,16 +185,17 @@ struct PatchPartitions {
 
 // The partitions of the pair (A's paths traced first). A pair given no
 // features and without holes starts from the pair of restart `start`.
-PatchPartitions partition_pair(const TriangleMesh& a, const TriangleMesh& b, const IntersurfaceResult& result,
+PatchPartitions partition_pair(const PairMeshes::Ordered& pair, const IntersurfaceResult& result,
                                const IntersurfaceOptions& options, int start, const ProgressCallback& progress) {
   auto stage = Clock::now();
+  const TriangleMesh &a = pair.a, &b = pair.b;
   std::vector<std::array<int, 2>> pairs;
   for (const FeaturePair& f : result.features) pairs.push_back({f.a, f.b});
   // Holes are closed by fans; paths keep cyclic orders by each mesh's own
   // orientation: B is turned like A (its input triangle indices stay, only
   // corner order flips).
-  PatchPartitions made{close_holes(a, /*any_genus=*/true), close_holes(b, /*any_genus=*/true), {}, {}, 0, 0, 0};
-  const ClosedMesh &closed_a = made.closed_a, &closed_b = made.closed_b;
+  PatchPartitions made;
+  const ClosedMesh &closed_a = pair.closed_a, &closed_b = pair.closed_b;
   if (result.genus == 0 && closed_a.loops.empty()) {
     add_sphere_base_pairs(a, b, start, pairs);
   } else if (pairs.empty() && closed_a.loops.empty()) {
@@ -175,7 +204,7 @@ PatchPartitions partition_pair(const TriangleMesh& a, const TriangleMesh& b, con
     // (meshes posed alike get a matching pair). Holes bring their own pairs
     // on their rims.
     const int far_a = spread_vertex(a, start);
-    pairs.push_back({far_a, PathGuide({}, {}, a, b).nearest(a.vertices[far_a], b.vertices)});
+    pairs.push_back({far_a, pair.unpaired->nearest(a.vertices[far_a], b.vertices)});
   }
   TriangleMesh b_like_a = closed_b.mesh;
   const bool turned = facing(closed_a.mesh, closed_b.mesh) < 0;
@@ -233,16 +262,17 @@ struct SidePartitions {
 // less_distorted's 5 % of the one kept before, BENCHMARKS.md), and each
 // optimized map costs as much as the screening of a start (feline - teapot:
 // 14-22 s without the balancing, 30-33 s with it).
-void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResult& result,
+void map_through_patches(const PairMeshes::Ordered& pair, IntersurfaceResult& result,
                          const IntersurfaceOptions& options, int start, const ProgressCallback& progress,
                          SidePartitions* side = nullptr) {
+  const TriangleMesh &a = pair.a, &b = pair.b;
   SidePartitions own;  // without `side`: nothing reuses the partitions, so the maps take them
   const bool reused = side != nullptr;
   if (!side) side = &own;
   if (!side->made)
-    side->made = std::make_shared<PatchPartitions>(partition_pair(a, b, result, options, start, progress));
+    side->made = std::make_shared<PatchPartitions>(partition_pair(pair, result, options, start, progress));
   PatchPartitions& made = *side->made;
-  const ClosedMesh &closed_a = made.closed_a, &closed_b = made.closed_b;
+  const ClosedMesh &closed_a = pair.closed_a, &closed_b = pair.closed_b;
   const int given = int(result.features.size()), retraced = made.retraced;
   result.seconds_features = made.seconds_features;
   result.seconds_partition = made.seconds_partition;
@@ -274,7 +304,7 @@ void map_through_patches(const TriangleMesh& a, const TriangleMesh& b, Intersurf
       partition = std::move(balanced);
       kept_balanced = true;
     } else if (made.traced.sides.empty()) {
-      made = partition_pair(a, b, result, options, start, progress);  // the traced partition, let go before, serves
+      made = partition_pair(pair, result, options, start, progress);  // the traced partition, let go before, serves
     }
   }
   if (!kept_balanced) {
@@ -348,11 +378,11 @@ struct StartTrials {
 // and a core idled about 7 s over the 8 starts).
 // Each start is judged, in order, as soon as both its sides are done; only
 // the best so far is kept, so memory holds a few maps and not one per start.
-void map_directly_best_of(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResult& result,
-                          const IntersurfaceOptions& options, const std::vector<int>& starts, StartTrials& tried,
-                          StartPartitions* partitions, const ProgressCallback& progress,
-                          const std::vector<int>& sides = {}) {
-  const std::size_t samples = a.triangles.size() + b.triangles.size();
+void map_directly_best_of(const PairMeshes& pair, IntersurfaceResult& result, const IntersurfaceOptions& options,
+                          const std::vector<int>& starts, StartTrials& tried, StartPartitions* partitions,
+                          const ProgressCallback& progress, const std::vector<int>& sides = {}) {
+  const PairMeshes::Ordered forward = pair.order(0), backward = pair.order(1);
+  const std::size_t samples = forward.a.triangles.size() + forward.b.triangles.size();
   struct Start {
     std::array<IntersurfaceResult, 2> sides;  // traced on A first, on B first
     std::array<std::exception_ptr, 2> thrown;
@@ -411,10 +441,7 @@ void map_directly_best_of(const TriangleMesh& a, const TriangleMesh& b, Intersur
       [&](int task, const ProgressCallback& part) {
         const auto [k, s] = tasks[task];
         Start& start = trial[k];
-        if (s == 0)
-          map_through_patches(a, b, start.sides[0], own, start.made.start, part, side(start, 0));
-        else
-          map_through_patches(b, a, start.sides[1], own, start.made.start, part, side(start, 1));
+        map_through_patches(s == 0 ? forward : backward, start.sides[s], own, start.made.start, part, side(start, s));
       },
       [&](int task, const std::exception_ptr& thrown) {
         const auto [k, s] = tasks[task];
@@ -436,10 +463,12 @@ void map_directly_best_of(const TriangleMesh& a, const TriangleMesh& b, Intersur
 
 void map_directly(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResult& result,
                   const IntersurfaceOptions& options, const ProgressCallback& progress) {
-  const bool automatic = result.features.empty() && check_mesh(a).closed() && check_mesh(b).closed();
+  const PairMeshes pair(a, b, result);
+  // Both have as many holes (intersurface_map checked).
+  const bool automatic = result.features.empty() && pair.order(0).closed_a.loops.empty();
   if (!automatic) {
     StartTrials ignored;
-    map_directly_best_of(a, b, result, options, {0}, ignored, nullptr, progress);
+    map_directly_best_of(pair, result, options, {0}, ignored, nullptr, progress);
     return;
   }
   const std::size_t samples = a.triangles.size() + b.triangles.size();
@@ -461,7 +490,7 @@ void map_directly(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResu
     quick.cross_sweeps = 0;
     IntersurfaceResult ignored = result;
     screening = 0.4;
-    map_directly_best_of(a, b, ignored, quick, starts, screened, &partitions, slice(progress, 0, screening));
+    map_directly_best_of(pair, ignored, quick, starts, screened, &partitions, slice(progress, 0, screening));
     // The least distorted of those left, options.restarts times (the tie
     // rule is no ordering to sort by), each optimized from the side its
     // screened map kept: the optimized maps rank the sides alike (21 of the
@@ -484,7 +513,7 @@ void map_directly(const TriangleMesh& a, const TriangleMesh& b, IntersurfaceResu
     if (!sides.empty() && partitions.start == starts[0]) partitions.sides[1 - sides[0]] = SidePartitions();
   }
   StartTrials optimized;
-  map_directly_best_of(a, b, result, options, starts, optimized, &partitions, slice(progress, screening, 1), sides);
+  map_directly_best_of(pair, result, options, starts, optimized, &partitions, slice(progress, screening, 1), sides);
   result.start_median_dirichlet = screened.medians;
   if (optimized.starts.size() > 1) {
     result.restart_dirichlet = std::move(optimized.energies);
