@@ -7,10 +7,11 @@
 // geometry and its vertices' images on the partner; every remesh vertex is a
 // carrier vertex, so it lies exactly on the carrier and its image exactly on
 // the partner, and features (locked) stay at identical indices. Collapses
-// removing triangles that face against the partner's surface go first, so a
-// remesh folds far less than the map's vertex sampling. Holes stay holes: each
-// is closed by a temporary fan while simplifying and its rim only shortens
-// along itself.
+// removing triangles that face against the partner's surface go first, then
+// edge flips split a folded triangle's quad along its other diagonal where
+// that folds less on both surfaces, so a remesh folds far less than the map's
+// vertex sampling. Holes stay holes: each is closed by a temporary fan while
+// simplifying and its rim only shortens along itself.
 #pragma once
 #include <vector>
 

@@ -10,14 +10,10 @@
 #include "consistent_maps/progressive_mesh.h"
 #include "common/side_by_side.h"
 #include "paths/mesh_holes.h"
+#include "remesh/unfolding_flips.h"
 
 namespace cmaps {
 namespace {
-
-// Facing against its corners' normals (as the simplification judges it).
-bool folded(const std::vector<Vec3>& x, const std::vector<Vec3>& normals, const Triangle& t) {
-  return (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]).dot(normals[t[0]] + normals[t[1]] + normals[t[2]]) <= 0;
-}
 
 // Per vertex: whether a triangle uses it (indices already checked).
 std::vector<char> used_vertices(const TriangleMesh& mesh) {
@@ -72,7 +68,7 @@ PairRemesh remesh_carried(const TriangleMesh& carrier, const TriangleMesh& partn
   // Meshes may face opposite ways (one's triangles listed inwards): the
   // partner's normals are turned when most images of carrier triangles face against them.
   int against = 0;
-  for (const Triangle& t : carrier.triangles) against += folded(on_partner, partner_normals, t) ? 1 : -1;
+  for (const Triangle& t : carrier.triangles) against += folds({on_partner, partner_normals}, t) ? 1 : -1;
   if (against > 0)
     for (Vec3& normal : partner_normals) normal = -normal;
   const std::vector<Vec3> fan_normals = vertex_normals({on_partner, closed.mesh.triangles});
@@ -101,12 +97,19 @@ PairRemesh remesh_carried(const TriangleMesh& carrier, const TriangleMesh& partn
       remesh.a_positions.push_back(carrier.vertices[v]);
       remesh.b_positions.push_back(on_partner[v]);
     }
-  for (int f = 0; f < closed.input_triangles; ++f) {
-    if (!pm.base_face_active[f]) continue;
-    const Triangle& t = pm.base_triangles[f];
+  // What the collapses could not unfold, flips may (the holes' fans stay).
+  std::vector<Triangle> kept;
+  std::vector<char> surface;
+  for (int f = 0; f < int(pm.base_triangles.size()); ++f)
+    if (pm.base_face_active[f]) kept.push_back(pm.base_triangles[f]), surface.push_back(f < closed.input_triangles);
+  const std::vector<FoldGeometry> geometries{{closed.mesh.vertices, options.reference_normals[0]},
+                                             {on_partner, options.reference_normals[1]}};
+  unfold_by_flips(kept, surface, geometries);
+  for (std::size_t f = 0; f < kept.size(); ++f) {
+    if (!surface[f]) continue;
+    const Triangle& t = kept[f];
     remesh.triangles.push_back({index[t[0]], index[t[1]], index[t[2]]});
-    remesh.folded_triangles += folded(closed.mesh.vertices, options.reference_normals[0], t) ||
-                               folded(on_partner, options.reference_normals[1], t);
+    remesh.folded_triangles += folds(geometries[0], t) || folds(geometries[1], t);
   }
   for (int f : features) remesh.feature_vertices.push_back(index[f]);
   return remesh;
