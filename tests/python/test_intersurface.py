@@ -577,3 +577,45 @@ def test_remesh_pair(native):
         native.remesh_pair(a, b, a_to_b, (b_to_a[0] * 0 - 1, b_to_a[1]), [[0, 7]], 600)
     with pytest.raises(native.InvalidMeshError, match="at least 4 vertices"):
         native.remesh_pair(a, b, a_to_b, b_to_a, [[0, 7]], 3)
+
+
+def _remesh_folds(carrier, partner, carrier_on_partner, triangles):
+    """Triangles over the carrier's vertices that face against the carrier (its vertex normals) or against the
+    partner at the vertices' images (the partner's vertex normals interpolated there), as remesh_pair counts
+    them; the partner's normals turned when most of the carrier's own triangles face against them."""
+    def vertex_normals(vertices, faces):
+        normals = np.zeros_like(vertices)
+        for k in range(3):
+            np.add.at(normals, faces[:, k], np.cross(vertices[faces[:, 1]] - vertices[faces[:, 0]],
+                                                    vertices[faces[:, 2]] - vertices[faces[:, 0]]))
+        return normals / np.maximum(np.linalg.norm(normals, axis=1, keepdims=True), 1e-300)
+
+    def against(x, normals, faces):
+        facing = np.cross(x[faces[:, 1]] - x[faces[:, 0]], x[faces[:, 2]] - x[faces[:, 0]])
+        return (facing * normals[faces].sum(axis=1)).sum(axis=1) <= 0
+
+    corners = partner[1][carrier_on_partner[0]]
+    weights = carrier_on_partner[1][:, :, None]
+    images = (weights * partner[0][corners]).sum(axis=1)
+    image_normals = (weights * vertex_normals(*partner)[corners]).sum(axis=1)
+    if against(images, image_normals, carrier[1]).sum() * 2 > len(carrier[1]):
+        image_normals = -image_normals
+    return int((against(carrier[0], vertex_normals(*carrier), triangles) |
+                against(images, image_normals, triangles)).sum())
+
+
+def test_remesh_pair_flips_unfold_what_cannot_be_simplified(native):
+    """Asked for more vertices than either mesh has, the remesh simplifies nothing: its carrier's triangles fold
+    where the map's vertex sampling does, and edge flips unfold those whose quad split the other way folds less
+    (torus - knot: 123 -> 48 folded on the knot, BENCHMARKS.md)."""
+    a, b = native.read_mesh(str(TORUS)), native.read_mesh(str(KNOT))
+    r = native.intersurface_map(a, b, [[0, 7]])
+    a_to_b, b_to_a = (r["a_to_b_triangle"], r["a_to_b_barycentric"]), (r["b_to_a_triangle"], r["b_to_a_barycentric"])
+    remesh = native.remesh_pair(a, b, a_to_b, b_to_a, [[0, 7]], 4098)
+    carrier, partner, images = (b, a, b_to_a) if remesh["b_carries"] else (a, b, a_to_b)
+    assert (remesh["carrier_vertex"] == np.arange(len(carrier[0]))).all()  # nothing simplified
+    flipped = _remesh_folds(carrier, partner, images, remesh["triangles"])
+    unflipped = _remesh_folds(carrier, partner, images, carrier[1])
+    print(f"torus - knot, nothing simplified: {unflipped} folded triangles -> {flipped} after the flips")
+    assert flipped == remesh["folded_triangles"]
+    assert (remesh["triangles"] != carrier[1]).any(axis=1).sum() > 0 and flipped <= unflipped / 2
