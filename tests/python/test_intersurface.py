@@ -607,7 +607,7 @@ def _remesh_folds(carrier, partner, carrier_on_partner, triangles):
 def test_remesh_pair_flips_unfold_what_cannot_be_simplified(native):
     """Asked for more vertices than either mesh has, the remesh simplifies nothing: its carrier's triangles fold
     where the map's vertex sampling does, and edge flips unfold those whose quad split the other way folds less
-    (torus - knot: 123 -> 48 folded on the knot, BENCHMARKS.md)."""
+    (torus - knot: 123 -> 35 folded on the knot, BENCHMARKS.md)."""
     a, b = native.read_mesh(str(TORUS)), native.read_mesh(str(KNOT))
     r = native.intersurface_map(a, b, [[0, 7]])
     a_to_b, b_to_a = (r["a_to_b_triangle"], r["a_to_b_barycentric"]), (r["b_to_a_triangle"], r["b_to_a_barycentric"])
@@ -618,4 +618,5 @@ def test_remesh_pair_flips_unfold_what_cannot_be_simplified(native):
     unflipped = _remesh_folds(carrier, partner, images, carrier[1])
     print(f"torus - knot, nothing simplified: {unflipped} folded triangles -> {flipped} after the flips")
     assert flipped == remesh["folded_triangles"]
-    assert (remesh["triangles"] != carrier[1]).any(axis=1).sum() > 0 and flipped <= unflipped / 2
+    # single flips alone: 48 (bench/pair_remesh_benchmark.py)
+    assert (remesh["triangles"] != carrier[1]).any(axis=1).sum() > 0 and flipped <= unflipped / 3
